@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""MedialMesh: block-structured quad meshes of planar faces from their medial axis.
+
+The Python API for macros and for the workbench. The work is done by the
+compiled module _medialmesh, which Init.py finds in <addon>/build/lib.
+"""
+
+try:
+    import _medialmesh
+except ImportError as error:
+    raise ImportError(
+        f"MedialMesh: cannot import the compiled core _medialmesh ({error}); "
+        "build it with tools/install.sh"
+    ) from error
+
+
+# re-exported so that callers need not import _medialmesh
+InputError = _medialmesh.InputError
+
+
+def boundary_model(face, name="face"):
+    """Return the boundary model of a planar face as a dict.
+
+    face: a Part.Face, or anything with exportBrepToString().
+    name: names the face in error messages and in the result.
+    Raises InputError when the face cannot be meshed (not planar, open wire, ...).
+    """
+    if not hasattr(face, "exportBrepToString"):
+        raise InputError(f"{name}: expected a Part.Face, got {type(face).__name__}")
+    return _medialmesh.face_model(face.exportBrepToString(), name)
+
+
+def module_path():
+    """Return the file the compiled module _medialmesh was loaded from."""
+    return _medialmesh.__file__

@@ -1,0 +1,121 @@
+// medialmesh: the batch tool. Reads CAD files and reports on or draws planar faces.
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "occ/occ_reader.hpp"
+#include "report/face_report.hpp"
+#include "svg/svg_writer.hpp"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: medialmesh info FILE [--face N]... [--json]\n"
+    "       medialmesh svg FILE [--face N] -o OUT.svg\n"
+    "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
+    "--face takes a number or a comma-separated list (info only).\n";
+
+struct Options {
+  std::string command;
+  std::string file;
+  std::vector<int> faces;
+  bool json = false;
+  std::string output;
+};
+
+struct UsageError {
+  std::string message;
+};
+
+std::vector<int> parse_face_list(const std::string& text) {
+  std::vector<int> faces;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    std::size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size()) throw UsageError{"--face needs a face number, got '" + text + "'"};
+    faces.push_back(value);
+    begin = end + 1;
+  }
+  return faces;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) throw UsageError{"no command given"};
+  o.command = args[0];
+  if (o.command != "info" && o.command != "svg") throw UsageError{"unknown command '" + o.command + "'"};
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError{a + " needs a value"};
+      return args[++i];
+    };
+    if (a == "--face") {
+      for (int f : parse_face_list(value())) o.faces.push_back(f);
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "-o" || a == "--output") {
+      o.output = value();
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError{"unknown option '" + a + "'"};
+    } else if (o.file.empty()) {
+      o.file = a;
+    } else {
+      throw UsageError{"more than one input file given"};
+    }
+  }
+  if (o.file.empty()) throw UsageError{"no input file given"};
+  if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
+  if (o.command == "svg" && o.faces.size() > 1) throw UsageError{"svg draws one face: give a single --face"};
+  return o;
+}
+
+int run(const Options& o) {
+  const std::vector<mm::FaceModel> faces = mm::read_face_models(o.file, o.faces);
+  if (o.command == "info") {
+    if (o.json) {
+      nlohmann::json all = nlohmann::json::array();
+      for (const auto& face : faces) all.push_back(mm::face_report_json(face));
+      std::cout << nlohmann::json{{"faces", all}}.dump(2) << "\n";
+    } else {
+      for (const auto& face : faces) std::cout << mm::face_report_table(face);
+    }
+  } else {
+    mm::SvgCanvas canvas(mm::bounding_box(faces.front()), 800);
+    mm::draw_face(canvas, faces.front());
+    canvas.save(o.output);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // OCC's readers print progress to stdout; JSON output must stay clean.
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  try {
+    const Options options = parse(argc, argv);
+    return run(options);
+  } catch (const UsageError& e) {
+    std::cerr << "medialmesh: " << e.message << "\n" << kUsage;
+    return 2;
+  } catch (const mm::InputError& e) {
+    std::cerr << "medialmesh: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "medialmesh: internal error: " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,155 @@
+#include "boundary/curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mm {
+namespace {
+
+CurvePoint evaluate_line(const LineCurve& c, double t) {
+  return {c.origin + t * c.direction, c.direction, {0.0, 0.0}};
+}
+
+CurvePoint evaluate_circle(const CircleCurve& c, double t) {
+  const double a = c.start_angle + c.sense * t;
+  const Vec2 u{std::cos(a), std::sin(a)};
+  return {c.center + c.radius * u, c.sense * c.radius * perp(u), -c.radius * u};
+}
+
+CurvePoint evaluate_ellipse(const EllipseCurve& c, double t) {
+  const Vec2 x = c.major_axis;
+  const Vec2 y = c.sense * perp(x);
+  const double ct = std::cos(t), st = std::sin(t);
+  const Vec2 offset = c.major_radius * ct * x + c.minor_radius * st * y;
+  return {c.center + offset, -c.major_radius * st * x + c.minor_radius * ct * y, -1.0 * offset};
+}
+
+// Index of the knot span holding t (clamped to the valid range).
+int find_span(const BSplineCurve& c, double t) {
+  const int n = static_cast<int>(c.poles.size()) - 1;
+  const int p = c.degree;
+  if (t >= c.knots[n + 1]) return n;
+  if (t <= c.knots[p]) return p;
+  const auto it = std::upper_bound(c.knots.begin() + p, c.knots.begin() + n + 1, t);
+  return static_cast<int>(it - c.knots.begin()) - 1;
+}
+
+// Basis functions and their first two derivatives at t on span i
+// (Piegl & Tiller, The NURBS Book, algorithm A2.3).
+void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32]) {
+  const int p = c.degree;
+  double ndu[32][32];
+  double left[32], right[32];
+  ndu[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = t - c.knots[i + 1 - j];
+    right[j] = c.knots[i + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      ndu[j][r] = right[r + 1] + left[j - r];
+      const double temp = ndu[r][j - 1] / ndu[j][r];
+      ndu[r][j] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    ndu[j][j] = saved;
+  }
+  for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
+  double a[2][32];
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int k = 1; k <= 2; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int j = j1; j <= j2; ++j) {
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        d += a[s2][j] * ndu[rk + j][pk];
+      }
+      if (r <= pk) {
+        a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+        d += a[s2][k] * ndu[r][pk];
+      }
+      ders[k][r] = d;
+      std::swap(s1, s2);
+    }
+  }
+  double factor = p;
+  for (int k = 1; k <= 2; ++k) {
+    for (int j = 0; j <= p; ++j) ders[k][j] *= factor;
+    factor *= (p - k);
+  }
+}
+
+CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
+  if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
+  const int span = find_span(c, t);
+  double ders[3][32] = {};
+  basis_derivatives(c, span, t, ders);
+  const bool rational = !c.weights.empty();
+  // Homogeneous sums: A = sum N w P, W = sum N w, for value and derivatives.
+  Vec2 a[3];
+  double w[3] = {0.0, 0.0, 0.0};
+  for (int j = 0; j <= c.degree; ++j) {
+    const int idx = span - c.degree + j;
+    const double wj = rational ? c.weights[idx] : 1.0;
+    for (int k = 0; k < 3; ++k) {
+      a[k] = a[k] + ders[k][j] * wj * c.poles[idx];
+      w[k] += ders[k][j] * wj;
+    }
+  }
+  const Vec2 p = a[0] / w[0];
+  const Vec2 d1 = (a[1] - w[1] * p) / w[0];
+  const Vec2 d2 = (a[2] - 2.0 * w[1] * d1 - w[2] * p) / w[0];
+  return {p, d1, d2};
+}
+
+}  // namespace
+
+CurveType curve_type(const Curve& curve) {
+  return static_cast<CurveType>(curve.index());
+}
+
+const char* curve_type_name(CurveType type) {
+  switch (type) {
+    case CurveType::Line: return "line";
+    case CurveType::Circle: return "circle";
+    case CurveType::Ellipse: return "ellipse";
+    case CurveType::BSpline: return "bspline";
+    case CurveType::Other: return "other";
+  }
+  return "other";
+}
+
+CurvePoint evaluate(const Curve& curve, double t) {
+  struct Visitor {
+    double t;
+    CurvePoint operator()(const LineCurve& c) const { return evaluate_line(c, t); }
+    CurvePoint operator()(const CircleCurve& c) const { return evaluate_circle(c, t); }
+    CurvePoint operator()(const EllipseCurve& c) const { return evaluate_ellipse(c, t); }
+    CurvePoint operator()(const BSplineCurve& c) const { return evaluate_bspline(c, t); }
+    CurvePoint operator()(const OtherCurve& c) const { return c.evaluate(t); }
+  };
+  return std::visit(Visitor{t}, curve);
+}
+
+std::vector<double> breakpoints(const Curve& curve, double lo, double hi) {
+  std::vector<double> result;
+  // Knots within rounding of the ends (edge ranges are often a knot +- 1e-13)
+  // would make empty pieces.
+  const double margin = 1e-9 * (hi - lo);
+  if (const auto* bs = std::get_if<BSplineCurve>(&curve)) {
+    for (double k : bs->knots) {
+      if (k > lo + margin && k < hi - margin && (result.empty() || k > result.back() + margin)) result.push_back(k);
+    }
+  }
+  return result;
+}
+
+}  // namespace mm

@@ -1,0 +1,451 @@
+#include "boundary/face_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "boundary/validate.hpp"
+
+namespace mm {
+namespace {
+
+// Tangent joins within this angle of a straight continuation are smooth.
+constexpr double kSmoothAngle = 0.5 * kPi / 180.0;
+// A B-spline is taken as a straight line if it stays within this fraction of
+// the face size of its chord, and as an arc if it stays within a fraction of
+// the arc's radius and of the face size: CAD systems approximate arcs to
+// about 1e-3 of the radius, and the design intent of such an edge is the arc.
+constexpr double kLineTolerance = 1e-6;
+constexpr double kArcRadiusTolerance = 1e-3;
+constexpr double kArcSizeTolerance = 1e-5;
+// Tangents closer than this to opposite directions make a (near) cusp.
+constexpr double kCuspAngle = 1.0 * kPi / 180.0;
+// Sampling never turns by more than this between consecutive points.
+constexpr double kMaxSampleTurn = 15.0 * kPi / 180.0;
+
+std::string format(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+std::string format(Vec2 p) {
+  return "(" + format(p.x) + ", " + format(p.y) + ")";
+}
+
+// Parameter pieces [lo, hi] split at B-spline knots, and so that a circle or
+// ellipse piece spans at most an eighth of a turn.
+std::vector<double> pieces(const BoundaryEdge& edge) {
+  const double lo = std::min(edge.t_start, edge.t_end);
+  const double hi = std::max(edge.t_start, edge.t_end);
+  std::vector<double> cuts{lo};
+  for (double b : breakpoints(edge.curve, lo, hi)) cuts.push_back(b);
+  cuts.push_back(hi);
+  const CurveType type = curve_type(edge.curve);
+  int per_piece = 1;
+  if (type == CurveType::Circle || type == CurveType::Ellipse) {
+    per_piece = std::max(1, static_cast<int>(std::ceil((hi - lo) / (kPi / 4))));
+  } else if (type == CurveType::BSpline || type == CurveType::Other) {
+    per_piece = 4;
+  }
+  std::vector<double> result;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    for (int k = 0; k < per_piece; ++k) result.push_back(cuts[i] + (cuts[i + 1] - cuts[i]) * k / per_piece);
+  }
+  result.push_back(hi);
+  return result;
+}
+
+// Adaptive 10-point Gauss-Legendre quadrature of f over [a, b].
+template <class F>
+double gauss(const F& f, double a, double b) {
+  static const double x[5] = {0.1488743389816312, 0.4333953941292472, 0.6794095682990244, 0.8650633666889845,
+                              0.9739065285171717};
+  static const double w[5] = {0.2955242247147529, 0.2692667193099963, 0.2190863625159820, 0.1494513491505806,
+                              0.0666713443086881};
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  double sum = 0.0;
+  for (int i = 0; i < 5; ++i) sum += w[i] * (f(mid - half * x[i]) + f(mid + half * x[i]));
+  return sum * half;
+}
+
+// Bisects until the two halves agree with the whole to a relative 1e-13 or
+// to the absolute floor (kept fixed: halving it would soon ask for more than
+// double precision holds); the depth cap bounds the work on pathological input.
+template <class F>
+double integrate(const F& f, double a, double b, double whole, double floor, int depth) {
+  const double mid = 0.5 * (a + b);
+  const double left = gauss(f, a, mid), right = gauss(f, mid, b);
+  const double tolerance = std::max(floor, 1e-13 * (std::abs(left) + std::abs(right)));
+  if (depth >= 16 || std::abs(left + right - whole) <= tolerance) return left + right;
+  return integrate(f, a, mid, left, floor, depth + 1) + integrate(f, mid, b, right, floor, depth + 1);
+}
+
+// Integral of f(t) over the edge's parameter range, signed by the direction of travel.
+template <class F>
+double integrate_edge(const BoundaryEdge& edge, const F& f, double tolerance) {
+  const std::vector<double> cuts = pieces(edge);
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    total += integrate(f, cuts[i], cuts[i + 1], gauss(f, cuts[i], cuts[i + 1]), tolerance, 0);
+  }
+  return edge.t_end >= edge.t_start ? total : -total;
+}
+
+Vec2 evaluate_point(const BoundaryEdge& edge, double t) {
+  return evaluate(edge.curve, t).p;
+}
+
+// Rough bounding-box diagonal, used to scale tolerances before anything is checked.
+double rough_size(const RawFace& raw) {
+  Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+  for (const auto& loop : raw.loops) {
+    for (const auto& edge : loop) {
+      for (int i = 0; i <= 16; ++i) {
+        const Vec2 p = evaluate_point(edge, edge.t_start + (edge.t_end - edge.t_start) * i / 16.0);
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      }
+    }
+  }
+  return lo.x <= hi.x ? distance(lo, hi) : 0.0;
+}
+
+// Points along the edge in the direction of travel, several per piece.
+std::vector<Vec2> dense_points(const BoundaryEdge& edge, int per_piece) {
+  std::vector<double> cuts = pieces(edge);
+  if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    for (int k = 0; k < per_piece; ++k) {
+      points.push_back(evaluate_point(edge, cuts[i] + (cuts[i + 1] - cuts[i]) * k / per_piece));
+    }
+  }
+  points.push_back(evaluate_point(edge, cuts.back()));
+  return points;
+}
+
+// Least-squares circle through the points (algebraic fit: x^2 + y^2 + D x +
+// E y + F = 0), centred on their mean for conditioning. False if degenerate.
+bool fit_circle(const std::vector<Vec2>& pts, Vec2& center, double& radius) {
+  Vec2 mean;
+  for (const Vec2& p : pts) mean = mean + p;
+  mean = mean / static_cast<double>(pts.size());
+  double suu = 0, suv = 0, svv = 0, su = 0, sv = 0, sz = 0, szu = 0, szv = 0;
+  for (const Vec2& q : pts) {
+    const Vec2 p = q - mean;
+    const double z = dot(p, p);
+    suu += p.x * p.x, suv += p.x * p.y, svv += p.y * p.y, su += p.x, sv += p.y;
+    sz += z, szu += z * p.x, szv += z * p.y;
+  }
+  const double n = static_cast<double>(pts.size());
+  // Normal equations for (D, E, F) by Cramer's rule.
+  const double m[3][3] = {{suu, suv, su}, {suv, svv, sv}, {su, sv, n}};
+  const double rhs[3] = {-szu, -szv, -sz};
+  const auto det3 = [](const double a[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double det = det3(m);
+  if (!(std::abs(det) > 1e-300)) return false;
+  double solution[3];
+  for (int c = 0; c < 3; ++c) {
+    double mc[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) mc[r][k] = k == c ? rhs[r] : m[r][k];
+    solution[c] = det3(mc) / det;
+  }
+  const Vec2 c{-0.5 * solution[0], -0.5 * solution[1]};
+  const double r2 = dot(c, c) - solution[2];
+  if (!(r2 > 0.0) || !std::isfinite(r2)) return false;
+  center = mean + c;
+  radius = std::sqrt(r2);
+  return true;
+}
+
+// A B-spline whose points all lie on a straight line or a circle within the
+// tolerance is replaced by that exact line or arc (STEP often stores arcs so).
+void recognise_simple_curve(BoundaryEdge& edge, double size) {
+  if (curve_type(edge.curve) != CurveType::BSpline) return;
+  const std::vector<Vec2> pts = dense_points(edge, 8);
+  const Vec2 a = pts.front(), b = pts.back();
+  const double chord = distance(a, b);
+  const double tolerance = kLineTolerance * size;
+  if (chord > tolerance) {
+    const Vec2 dir = (b - a) / chord;
+    bool straight = true;
+    for (const Vec2& p : pts) {
+      const double along = dot(p - a, dir);
+      straight =
+          straight && std::abs(cross(dir, p - a)) <= tolerance && along >= -tolerance && along <= chord + tolerance;
+    }
+    if (straight) {
+      edge.curve = LineCurve{a, dir};
+      edge.t_start = 0.0;
+      edge.t_end = chord;
+      return;
+    }
+  }
+  const std::size_t n = pts.size();
+  Vec2 center;
+  double radius = 0.0;
+  if (!fit_circle(pts, center, radius)) return;
+  const double arc_tolerance = std::min(kArcRadiusTolerance * radius, kArcSizeTolerance * size);
+  double sweep = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::abs(distance(center, pts[i]) - radius) > arc_tolerance) return;
+    if (i > 0) {
+      const double step = signed_angle(pts[i - 1] - center, pts[i] - center);
+      if (sweep != 0.0 && step * sweep < 0.0) return;  // doubles back: not one arc
+      sweep += step;
+    }
+  }
+  if (std::abs(sweep) < 1e-9) return;
+  const Vec2 r0 = pts[0] - center;
+  edge.curve = CircleCurve{center, radius, std::atan2(r0.y, r0.x), sweep > 0 ? 1 : -1};
+  edge.t_start = 0.0;
+  edge.t_end = std::abs(sweep);
+}
+
+void reverse_loop(std::vector<BoundaryEdge>& loop) {
+  std::reverse(loop.begin(), loop.end());
+  for (auto& edge : loop) {
+    std::swap(edge.t_start, edge.t_end);
+    std::swap(edge.start, edge.end);
+  }
+}
+
+// Joins each edge's end to the next edge's start at one shared vertex.
+void snap_loop(std::vector<BoundaryEdge>& loop, int loop_index, double gap_tolerance, const std::string& name) {
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    BoundaryEdge& a = loop[i];
+    BoundaryEdge& b = loop[(i + 1) % loop.size()];
+    const Vec2 pa = evaluate_point(a, a.t_end), pb = evaluate_point(b, b.t_start);
+    const double gap = distance(pa, pb);
+    if (gap > gap_tolerance) {
+      throw InputError(name + ": open wire: loop " + std::to_string(loop_index + 1) + " has a gap of " + format(gap) +
+                       " between edge " + std::to_string(a.source_index) + " and edge " +
+                       std::to_string(b.source_index) + " at " + format(pa));
+    }
+    a.end = b.start = 0.5 * (pa + pb);
+  }
+}
+
+// Straight edges are rebuilt through their snapped vertices so they stay exact.
+void rebuild_lines(std::vector<BoundaryEdge>& loop) {
+  for (auto& edge : loop) {
+    if (curve_type(edge.curve) != CurveType::Line) continue;
+    const double length = distance(edge.start, edge.end);
+    edge.curve = LineCurve{edge.start, (edge.end - edge.start) / length};
+    edge.t_start = 0.0;
+    edge.t_end = length;
+  }
+}
+
+// Interior angle at the vertex where edge `in` ends and edge `out` starts.
+double interior_angle(const BoundaryEdge& in, const BoundaryEdge& out) {
+  const double turn = signed_angle(edge_tangent(in, in.t_end), edge_tangent(out, out.t_start));
+  const double from_antiparallel = kPi - std::abs(turn);
+  if (from_antiparallel > kCuspAngle) return kPi - turn;
+  // Nearly a cusp: a tiny change of tangent flips the angle between about 0
+  // and 2pi, so short chords along both curves (from each curve's own end, not
+  // the snapped vertex) decide on which side the material is.
+  const double reach = 1e-2 * std::min(edge_length(in), edge_length(out));
+  const CurvePoint end_in = evaluate(in.curve, in.t_end), start_out = evaluate(out.curve, out.t_start);
+  const double step_in = reach / std::max(norm(end_in.d1), 1e-300) * (in.t_end > in.t_start ? 1 : -1);
+  const double step_out = reach / std::max(norm(start_out.d1), 1e-300) * (out.t_end > out.t_start ? 1 : -1);
+  const Vec2 back = evaluate_point(in, in.t_end - step_in) - end_in.p;
+  const Vec2 ahead = evaluate_point(out, out.t_start + step_out) - start_out.p;
+  const bool spike = signed_angle(ahead, back) >= 0.0;  // counter-clockwise from ahead to back is short
+  return spike ? from_antiparallel : 2.0 * kPi - from_antiparallel;
+}
+
+}  // namespace
+
+int optimal_corner_type(double angle) {
+  const double degrees = angle * 180.0 / kPi;
+  if (degrees < 45.0) return 0;
+  if (degrees < 135.0) return 1;
+  if (degrees < 225.0) return 2;
+  if (degrees < 315.0) return 3;
+  return 4;
+}
+
+int predicted_sum_k(const FaceModel& face) {
+  int sum = 0;
+  for (const Corner& c : face.corners) sum += 2 - c.nc;
+  return sum - 4 * face.euler();
+}
+
+CurvePoint edge_point(const BoundaryEdge& edge, double t) {
+  return evaluate(edge.curve, t);
+}
+
+Vec2 edge_tangent(const BoundaryEdge& edge, double t) {
+  const double direction = edge.t_end >= edge.t_start ? 1.0 : -1.0;
+  const CurvePoint cp = evaluate(edge.curve, t);
+  if (norm(cp.d1) > 1e-12 * (1.0 + norm(cp.d2))) return normalized(direction * cp.d1);
+  // Degenerate parametrisation (repeated poles): the chord a little way in gives the direction.
+  const double step = 1e-6 * (edge.t_end - edge.t_start);
+  const bool at_start = std::abs(t - edge.t_start) < std::abs(t - edge.t_end);
+  const Vec2 other = evaluate_point(edge, at_start ? t + step : t - step);
+  return normalized(at_start ? other - cp.p : cp.p - other);
+}
+
+double edge_length(const BoundaryEdge& edge) {
+  const auto speed = [&](double t) { return norm(evaluate(edge.curve, t).d1); };
+  double polygon = 0.0;  // length of the polygon through the piece ends, for the absolute floor
+  const std::vector<double> cuts = pieces(edge);
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    polygon += distance(evaluate_point(edge, cuts[i]), evaluate_point(edge, cuts[i + 1]));
+  }
+  return std::abs(integrate_edge(edge, speed, 1e-15 * polygon + 1e-300));
+}
+
+double signed_area(const Loop& loop) {
+  if (loop.edges.empty()) return 0.0;
+  const Vec2 ref = loop.edges.front().start;  // near the loop, for less cancellation
+  double scale = 0.0;                         // the loop's extent, from points along every edge
+  for (const auto& e : loop.edges) {
+    for (double t : pieces(e)) scale = std::max(scale, distance(evaluate_point(e, t), ref));
+  }
+  // Straight connectors close the small gaps between a curve's ends and its
+  // snapped vertices, so the boundary integral runs over a closed path.
+  const auto segment = [&](Vec2 a, Vec2 b) { return 0.5 * cross(a - ref, b - a); };
+  double area = 0.0;
+  for (const auto& edge : loop.edges) {
+    area +=
+        segment(edge.start, evaluate_point(edge, edge.t_start)) + segment(evaluate_point(edge, edge.t_end), edge.end);
+    const auto integrand = [&](double t) {
+      const CurvePoint cp = evaluate(edge.curve, t);
+      return 0.5 * cross(cp.p - ref, cp.d1);
+    };
+    area += integrate_edge(edge, integrand, 1e-16 * scale * scale + 1e-300);
+  }
+  return area;
+}
+
+std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) {
+  std::vector<double> cuts = pieces(edge);
+  if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());
+  std::vector<Vec2> points{edge.start};
+  if (curve_type(edge.curve) == CurveType::Line) {
+    points.push_back(edge.end);
+    return points;
+  }
+  // Bisect a parameter interval until its chord is close enough to the curve.
+  const auto refine = [&](auto&& self, double a, double b, int depth) -> void {
+    const CurvePoint pa = evaluate(edge.curve, a), pb = evaluate(edge.curve, b);
+    const double m = 0.5 * (a + b);
+    const Vec2 pm = evaluate_point(edge, m);
+    const Vec2 chord = pb.p - pa.p;
+    const double len = norm(chord);
+    const double deviation = len > 0 ? std::abs(cross(chord, pm - pa.p)) / len : distance(pm, pa.p);
+    const double turn = std::abs(signed_angle(pa.d1, pb.d1));
+    if (depth < 24 && (deviation > chord_tolerance || turn > kMaxSampleTurn)) {
+      self(self, a, m, depth + 1);
+      self(self, m, b, depth + 1);
+    } else {
+      points.push_back(pb.p);
+    }
+  };
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) refine(refine, cuts[i], cuts[i + 1], 0);
+  points.back() = edge.end;
+  return points;
+}
+
+std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance) {
+  std::vector<Vec2> result;
+  for (const auto& edge : loop.edges) {
+    std::vector<Vec2> pts = sample_edge(edge, chord_tolerance);
+    result.insert(result.end(), pts.begin(), pts.end() - 1);
+  }
+  return result;
+}
+
+Box bounding_box(const FaceModel& face) {
+  Box box{{1e300, 1e300}, {-1e300, -1e300}};
+  for (const Vec2& p : sample_loop(face.loops.front(), 1e-3 * face.size)) {
+    box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
+    box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
+  }
+  return box;
+}
+
+std::array<double, 3> to_3d(const Frame& f, Vec2 p) {
+  return {f.origin[0] + p.x * f.x_dir[0] + p.y * f.y_dir[0], f.origin[1] + p.x * f.x_dir[1] + p.y * f.y_dir[1],
+          f.origin[2] + p.x * f.x_dir[2] + p.y * f.y_dir[2]};
+}
+
+FaceModel build_face_model(RawFace raw) {
+  const std::string& name = raw.name;
+  if (raw.loops.empty()) throw InputError(name + ": face has no boundary");
+  for (const auto& loop : raw.loops) {
+    if (loop.empty()) throw InputError(name + ": face has an empty wire");
+  }
+  const double size = rough_size(raw);
+  if (!(size > 0.0) || !std::isfinite(size)) throw InputError(name + ": face has no area");
+  const double tolerance = std::max(raw.tolerance, 1e-9 * size);
+
+  FaceModel face;
+  face.name = name;
+  face.size = size;
+  face.tolerance = tolerance;
+  face.frame = raw.frame;
+
+  std::vector<double> areas;
+  for (std::size_t li = 0; li < raw.loops.size(); ++li) {
+    auto& edges = raw.loops[li];
+    for (auto& edge : edges) {
+      const double length = edge_length(edge);
+      if (length <= 1e-12 * size) {
+        throw InputError(name + ": edge " + std::to_string(edge.source_index) + " has zero length");
+      }
+      if (length <= tolerance) {
+        throw InputError(name + ": edge " + std::to_string(edge.source_index) + " is shorter (" + format(length) +
+                         ") than the tolerance " + format(tolerance));
+      }
+    }
+    snap_loop(edges, static_cast<int>(li), 2.0 * tolerance, name);
+    for (auto& edge : edges) recognise_simple_curve(edge, size);
+    rebuild_lines(edges);
+    face.loops.push_back(Loop{std::move(edges)});
+    areas.push_back(signed_area(face.loops.back()));
+  }
+
+  // The outer loop encloses the largest area; orient it counter-clockwise and holes clockwise.
+  const auto outer =
+      std::max_element(areas.begin(), areas.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }) -
+      areas.begin();
+  std::rotate(face.loops.begin(), face.loops.begin() + outer, face.loops.begin() + outer + 1);
+  std::rotate(areas.begin(), areas.begin() + outer, areas.begin() + outer + 1);
+  for (std::size_t li = 0; li < face.loops.size(); ++li) {
+    const bool want_positive = li == 0;
+    if ((areas[li] > 0) != want_positive) {
+      reverse_loop(face.loops[li].edges);
+      areas[li] = -areas[li];
+    }
+    face.area += areas[li];
+  }
+  if (!(face.area > 1e-12 * size * size)) throw InputError(name + ": face has no area");
+
+  std::vector<std::vector<Vec2>> polylines;
+  for (const auto& loop : face.loops) polylines.push_back(sample_loop(loop, 1e-5 * size));
+  const std::string problem = find_region_problem(polylines);
+  if (!problem.empty()) throw InputError(name + ": " + problem);
+
+  for (std::size_t li = 0; li < face.loops.size(); ++li) {
+    const auto& edges = face.loops[li].edges;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const BoundaryEdge& in = edges[(i + edges.size() - 1) % edges.size()];
+      const double angle = interior_angle(in, edges[i]);
+      if (std::abs(angle - kPi) <= kSmoothAngle) continue;
+      face.corners.push_back(
+          {static_cast<int>(li), static_cast<int>(i), edges[i].start, angle, optimal_corner_type(angle)});
+    }
+  }
+  return face;
+}
+
+}  // namespace mm

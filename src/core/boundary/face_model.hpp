@@ -1,0 +1,107 @@
+#pragma once
+// The boundary model: a planar face as closed loops of exact curves in the
+// face's own 2-D coordinates, with its corners classified as in the paper
+// (optimal corner type nc, Fig. 6 right).
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "boundary/curve.hpp"
+
+namespace mm {
+
+// Bad input: the message names the face and the problem.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One edge of a loop, traversed from t_start to t_end (t_end < t_start when
+// the loop runs against the curve's direction).
+struct BoundaryEdge {
+  Curve curve;
+  double t_start = 0.0;
+  double t_end = 0.0;
+  int source_index = 0;  // 1-based edge index in the source face (FreeCAD's EdgeN)
+  Vec2 start;            // snapped loop vertices at either end
+  Vec2 end;
+};
+
+// Closed loop: edge i ends at the vertex where edge i+1 starts. The material
+// is always on the left: the outer loop runs counter-clockwise, holes clockwise.
+struct Loop {
+  std::vector<BoundaryEdge> edges;
+};
+
+struct Corner {
+  int loop = 0;
+  int vertex = 0;  // vertex i is the start of edge i of the loop
+  Vec2 position;
+  double angle = 0.0;  // interior angle from the curve tangents, radians in [0, 2pi]
+  int nc = 2;          // optimal number of elements at the corner
+};
+
+// Maps face coordinates back to 3-D: origin + x * x_dir + y * y_dir.
+struct Frame {
+  std::array<double, 3> origin{0, 0, 0};
+  std::array<double, 3> x_dir{1, 0, 0};
+  std::array<double, 3> y_dir{0, 1, 0};
+  std::array<double, 3> normal{0, 0, 1};
+};
+
+struct FaceModel {
+  std::string name;
+  std::vector<Loop> loops;      // loops[0] is the outer loop
+  std::vector<Corner> corners;  // the vertices that are not tangent joins
+  double area = 0.0;
+  double size = 0.0;       // diagonal of the bounding box
+  double tolerance = 0.0;  // geometric tolerance the face was read with
+  Frame frame;
+  int holes() const { return static_cast<int>(loops.size()) - 1; }
+  int euler() const { return 1 - holes(); }
+};
+
+// What a reader hands over: loops in any orientation and any order, edges
+// chained end to start within the reader's tolerance.
+struct RawFace {
+  std::string name;
+  std::vector<std::vector<BoundaryEdge>> loops;
+  double tolerance = 1e-7;
+  Frame frame;
+};
+
+// Orients and validates the loops, snaps vertices, recognises arcs and lines
+// stored as B-splines, and classifies corners. Throws InputError.
+FaceModel build_face_model(RawFace raw);
+
+// Sum of singularity indices every quad mesh of the face must have
+// (Poincare-Hopf): sum over corners of (2 - nc) minus 4 times the Euler characteristic.
+int predicted_sum_k(const FaceModel& face);
+
+// Optimal corner type for an interior angle: 0 below 45 degrees, 1 below 135,
+// 2 below 225, 3 below 315, else 4.
+int optimal_corner_type(double angle);
+
+// Position and unit tangent in the loop's direction of travel.
+CurvePoint edge_point(const BoundaryEdge& edge, double t);
+Vec2 edge_tangent(const BoundaryEdge& edge, double t);
+double edge_length(const BoundaryEdge& edge);
+
+// Points along the edge, start and end included, with chordal deviation at
+// most chord_tolerance and no more than 15 degrees of turning between points.
+std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance);
+// The loop as a closed polyline (first point not repeated at the end).
+std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance);
+
+double signed_area(const Loop& loop);
+
+struct Box {
+  Vec2 min;
+  Vec2 max;
+};
+Box bounding_box(const FaceModel& face);
+
+std::array<double, 3> to_3d(const Frame& frame, Vec2 p);
+
+}  // namespace mm

@@ -1,0 +1,35 @@
+#pragma once
+// A small SVG canvas in face coordinates (y up) and the drawing of a face.
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "boundary/face_model.hpp"
+
+namespace mm {
+
+class SvgCanvas {
+ public:
+  // Fits the box into a picture `width` pixels wide, with a margin.
+  SvgCanvas(Box box, double width);
+  void polyline(const std::vector<Vec2>& points, bool closed, const std::string& style);
+  // Closed polylines filled together with the even-odd rule (a face with holes).
+  void region(const std::vector<std::vector<Vec2>>& loops, const std::string& style);
+  void dot(Vec2 p, double radius_px, const std::string& style);
+  void text(Vec2 p, const std::string& label, double size_px, const std::string& style);
+  double pixels_per_unit() const { return scale_; }
+  std::string str() const;
+  void save(const std::string& path) const;  // throws InputError if it cannot write
+
+ private:
+  Vec2 map(Vec2 p) const;
+  Box box_;
+  double scale_;
+  double width_, height_, margin_;
+  std::ostringstream body_;
+};
+
+// The face filled, its outline, and its corners coloured by nc with a legend.
+void draw_face(SvgCanvas& canvas, const FaceModel& face);
+
+}  // namespace mm

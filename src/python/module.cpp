@@ -1,0 +1,52 @@
+// _medialmesh: the core and the OCC reader seen from Python (and FreeCAD).
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "occ/occ_reader.hpp"
+#include "report/face_report.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+// The JSON report plus what a Python caller needs to draw or map back to 3-D.
+py::object face_dict(const mm::FaceModel& face) {
+  nlohmann::json report = mm::face_report_json(face);
+  report["frame"] = {{"origin", face.frame.origin},
+                     {"x_dir", face.frame.x_dir},
+                     {"y_dir", face.frame.y_dir},
+                     {"normal", face.frame.normal}};
+  nlohmann::json loops = nlohmann::json::array();
+  for (const mm::Loop& loop : face.loops) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const mm::Vec2& p : mm::sample_loop(loop, 1e-4 * face.size)) points.push_back({p.x, p.y});
+    loops.push_back(points);
+  }
+  report["loops"] = loops;
+  return py::module_::import("json").attr("loads")(report.dump());
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_medialmesh, m) {
+  m.doc() = "MedialMesh core: boundary model of planar faces";
+  py::register_exception<mm::InputError>(m, "InputError", PyExc_ValueError);
+
+  m.def(
+      "face_model",
+      [](const std::string& brep, const std::string& name) {
+        return face_dict(mm::face_model_from_brep_string(brep, name));
+      },
+      py::arg("brep"), py::arg("name") = "face",
+      "Boundary model of one planar face given as BREP text (Face.exportBrepToString()).");
+
+  m.def(
+      "read_faces",
+      [](const std::string& path, const std::vector<int>& faces) {
+        py::list result;
+        for (const auto& face : mm::read_face_models(path, faces)) result.append(face_dict(face));
+        return result;
+      },
+      py::arg("path"), py::arg("faces") = std::vector<int>{},
+      "Boundary models of faces (1-based numbers) read from a BREP, STEP or IGES file.");
+}

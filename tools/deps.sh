@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages MedialMesh builds, runs and tests with.
+# Runs apt-get only when something is missing, so repeated calls are fast.
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ ccache pkg-config
+  libocct-foundation-dev libocct-modeling-data-dev
+  libocct-modeling-algorithms-dev libocct-data-exchange-dev
+  libocct-visualization-dev # BRep_Tool.hxx includes a header shipped only here
+  libboost-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  pybind11-dev python3-dev
+  freecad xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "deps: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update
+  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Build MedialMesh and make its workbench appear in FreeCAD for the current
+# user: the repository root is linked into FreeCAD's user Mod folder as
+# MedialMesh. Safe to run again.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+echo "== building: tools/build.sh"
+"$root/tools/build.sh"
+
+# Ask FreeCAD where the user Mod folder is (0.20 on Linux: ~/.local/share/FreeCAD/Mod).
+mod_dir="$(freecadcmd -c \
+    'import FreeCAD; print("user-mod-dir=" + FreeCAD.getUserAppDataDir() + "Mod")' \
+    </dev/null 2>/dev/null | sed -n 's/^user-mod-dir=//p' || true)"
+if [[ -z $mod_dir ]]; then
+    echo "install.sh: freecadcmd did not tell its user Mod folder; is FreeCAD installed?" >&2
+    exit 1
+fi
+link="$mod_dir/MedialMesh"
+mkdir -p "$mod_dir"
+if [[ -L $link && $(readlink "$link") == "$root" ]]; then
+    echo "== $link already links to $root"
+elif [[ -e $link && ! -L $link ]]; then
+    echo "install.sh: $link exists and is not a link (installed by the Addon Manager?);" \
+        "remove it, then run this again" >&2
+    exit 1
+else
+    if [[ -L $link ]]; then
+        echo "== replacing $link -> $(readlink "$link")"
+    fi
+    ln -sfn "$root" "$link"
+    echo "== linked $link -> $root"
+fi
+
+# The same start-up as the GUI's: Init.py of the linked addon puts MedialMesh on sys.path.
+loaded="$(freecadcmd -c \
+    'import MedialMesh; print("medialmesh-module=" + MedialMesh.module_path())' \
+    </dev/null 2>&1 | sed -n 's/^medialmesh-module=//p' || true)"
+if [[ -z $loaded ]]; then
+    echo "install.sh: FreeCAD cannot import MedialMesh; try: freecadcmd -c 'import MedialMesh'" >&2
+    exit 1
+fi
+echo "== FreeCAD loads the compiled core from $loaded"
+echo "== done: start FreeCAD and pick the MedialMesh workbench"
