@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-dev
   freecad xvfb xauth
+  librsvg2-bin # rsvg-convert: SVG pictures to PNG
 )
 
 missing=()

@@ -17,6 +17,7 @@
 #include <Geom_Plane.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Precision.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
@@ -29,6 +30,7 @@
 #include <filesystem>
 #include <fstream>
 #include <gp_Trsf2d.hxx>
+#include <iostream>
 #include <sstream>
 
 #include "occ/occ_face.hpp"
@@ -169,6 +171,13 @@ RawFace raw_face(const TopoDS_Face& input, const std::string& name) {
   const gp_Trsf2d to_frame = plane_to_frame(plane, raw.frame);
   TopTools_IndexedMapOfShape edge_numbers;
   TopExp::MapShapes(input, TopAbs_EDGE, edge_numbers);
+  // An empty parameter range breaks OCC's own wire traversal, so check first.
+  for (int i = 1; i <= edge_numbers.Extent(); ++i) {
+    double first = 0.0, last = 0.0;
+    BRep_Tool::Range(TopoDS::Edge(edge_numbers(i)), first, last);
+    if (!(last - first > Precision::PConfusion()))
+      throw InputError(name + ": edge " + std::to_string(i) + " has zero length");
+  }
   for (TopExp_Explorer wires(face, TopAbs_WIRE); wires.More(); wires.Next()) {
     std::vector<BoundaryEdge> loop;
     for (BRepTools_WireExplorer it(TopoDS::Wire(wires.Current()), face); it.More(); it.Next()) {
@@ -215,6 +224,17 @@ std::string planar_face_list(const TopTools_IndexedMapOfShape& faces) {
   return list.empty() ? "none" : list;
 }
 
+// OCC's BREP reader reports problems on std::cout; the CLI's stdout is for results.
+class SilencedStdout {
+ public:
+  SilencedStdout() : saved_(std::cout.rdbuf(sink_.rdbuf())) {}
+  ~SilencedStdout() { std::cout.rdbuf(saved_); }
+
+ private:
+  std::ostringstream sink_;
+  std::streambuf* saved_;
+};
+
 }  // namespace
 
 TopoDS_Shape read_shape(const std::string& path) {
@@ -228,6 +248,7 @@ TopoDS_Shape read_shape(const std::string& path) {
   try {
     if (ext == ".brep" || ext == ".brp") {
       BRep_Builder builder;
+      SilencedStdout silence;
       if (!BRepTools::Read(shape, path.c_str(), builder)) shape.Nullify();
     } else if (ext == ".step" || ext == ".stp") {
       STEPControl_Reader reader;
@@ -283,6 +304,7 @@ FaceModel face_model_from_brep_string(const std::string& brep, const std::string
   try {
     std::istringstream stream(brep);
     BRep_Builder builder;
+    SilencedStdout silence;
     BRepTools::Read(shape, stream, builder);
   } catch (const Standard_Failure& failure) {
     throw InputError(name + ": cannot read BREP text: " + failure.GetMessageString());

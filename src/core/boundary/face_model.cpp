@@ -428,12 +428,17 @@ FaceModel build_face_model(RawFace raw) {
     }
     face.area += areas[li];
   }
-  if (!(face.area > 1e-12 * size * size)) throw InputError(name + ": face has no area");
-
   std::vector<std::vector<Vec2>> polylines;
-  for (const auto& loop : face.loops) polylines.push_back(sample_loop(loop, 1e-5 * size));
+  double spread = 0.0;  // area of the triangle fans: zero only if every loop is collinear
+  for (const auto& loop : face.loops) {
+    polylines.push_back(sample_loop(loop, 1e-5 * size));
+    const auto& pts = polylines.back();
+    for (std::size_t i = 1; i + 1 < pts.size(); ++i) spread += std::abs(cross(pts[i] - pts[0], pts[i + 1] - pts[0]));
+  }
+  if (!(spread > 1e-12 * size * size)) throw InputError(name + ": face has no area");
   const std::string problem = find_region_problem(polylines);
   if (!problem.empty()) throw InputError(name + ": " + problem);
+  if (!(face.area > 1e-12 * size * size)) throw InputError(name + ": face has no area");
 
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     const auto& edges = face.loops[li].edges;

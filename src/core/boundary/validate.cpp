@@ -40,6 +40,12 @@ std::string find_region_problem(const std::vector<std::vector<Vec2>>& loops) {
     polygon.inners().emplace_back();
     fill(loops[i], polygon.inners().back());
   }
+  // Each wire on its own first: a crossing wire can look merely mis-oriented to is_valid.
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    if (bg::intersects(i == 0 ? polygon.outer() : polygon.inners()[i - 1])) {
+      return "self-intersecting wire (loop " + std::to_string(i + 1) + ")";
+    }
+  }
   bg::validity_failure_type failure = bg::no_failure;
   if (bg::is_valid(polygon, failure) || failure == bg::failure_duplicate_points) return "";
   return describe(failure);

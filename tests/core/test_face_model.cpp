@@ -1,0 +1,184 @@
+// Boundary model on hand-built faces: orientation, snapping, arc recognition,
+// corner angles and types, and the errors for bad loops.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "boundary/face_model.hpp"
+
+namespace mm {
+namespace {
+
+BoundaryEdge line(Vec2 a, Vec2 b) {
+  const double length = distance(a, b);
+  return BoundaryEdge{LineCurve{a, (b - a) / length}, 0.0, length, 0, {}, {}};
+}
+
+std::vector<BoundaryEdge> polygon(const std::vector<Vec2>& pts) {
+  std::vector<BoundaryEdge> edges;
+  for (std::size_t i = 0; i < pts.size(); ++i) edges.push_back(line(pts[i], pts[(i + 1) % pts.size()]));
+  return edges;
+}
+
+BoundaryEdge full_circle(Vec2 center, double radius, int sense) {
+  return BoundaryEdge{CircleCurve{center, radius, 0.0, sense}, 0.0, 2 * kPi, 0, {}, {}};
+}
+
+RawFace raw(std::vector<std::vector<BoundaryEdge>> loops) {
+  RawFace face;
+  face.name = "test face";
+  face.loops = std::move(loops);
+  return face;
+}
+
+TEST(FaceModel, OrientsOuterLoopCounterClockwiseAndHolesClockwise) {
+  // Outer square given clockwise, hole given counter-clockwise, hole listed first.
+  const FaceModel face =
+      build_face_model(raw({{full_circle({0, 0}, 0.5, 1)}, polygon({{-2, -2}, {-2, 2}, {2, 2}, {2, -2}})}));
+  ASSERT_EQ(face.loops.size(), 2u);
+  EXPECT_GT(signed_area(face.loops[0]), 0.0);
+  EXPECT_LT(signed_area(face.loops[1]), 0.0);
+  EXPECT_EQ(face.loops[0].edges.size(), 4u);
+  EXPECT_NEAR(face.area, 16.0 - kPi * 0.25, 1e-12);
+  EXPECT_EQ(face.holes(), 1);
+  EXPECT_EQ(face.euler(), 0);
+  EXPECT_EQ(face.corners.size(), 4u);
+  for (const Corner& c : face.corners) {
+    EXPECT_NEAR(c.angle, kPi / 2, 1e-12);
+    EXPECT_EQ(c.nc, 1);
+  }
+  EXPECT_EQ(predicted_sum_k(face), 4);
+}
+
+TEST(FaceModel, ReflexCornerOfAnLShape) {
+  const FaceModel face = build_face_model(raw({polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})}));
+  int reflex = 0;
+  for (const Corner& c : face.corners) {
+    if (c.nc == 3) {
+      ++reflex;
+      EXPECT_NEAR(c.angle, 1.5 * kPi, 1e-12);
+      EXPECT_NEAR(c.position.x, 1.0, 1e-15);
+      EXPECT_NEAR(c.position.y, 1.0, 1e-15);
+    }
+  }
+  EXPECT_EQ(reflex, 1);
+  EXPECT_EQ(predicted_sum_k(face), 0);
+}
+
+TEST(FaceModel, SnapsSmallGapsAndRejectsOpenWires) {
+  auto edges = polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  edges[1] = line({1, 1e-9}, {1, 1});  // starts 1e-9 away from where edge 0 ends
+  RawFace face = raw({edges});
+  face.tolerance = 1e-7;
+  const FaceModel model = build_face_model(face);
+  EXPECT_NEAR(model.area, 1.0, 1e-8);
+  EXPECT_EQ(model.corners.size(), 4u);
+
+  edges[1] = line({1, 0.01}, {1, 1});
+  try {
+    build_face_model(raw({edges}));
+    FAIL() << "an open wire was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("open wire"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("test face"), std::string::npos) << e.what();
+  }
+}
+
+void expect_input_error(RawFace face, const std::string& problem) {
+  try {
+    build_face_model(std::move(face));
+    FAIL() << "accepted a face with: " << problem;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+  }
+}
+
+TEST(FaceModel, RejectsSelfIntersectionZeroLengthAndNoArea) {
+  expect_input_error(raw({polygon({{0, 0}, {2, 2}, {2, 0}, {0, 2}})}), "self-intersecting");
+  auto square = polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  square.insert(square.begin() + 1, BoundaryEdge{LineCurve{{1, 0}, {1, 0}}, 0.0, 0.0, 7, {}, {}});
+  expect_input_error(raw({square}), "edge 7 has zero length");
+  expect_input_error(raw({polygon({{0, 0}, {1, 0}, {2, 0}})}), "no area");
+  expect_input_error(raw({}), "no boundary");
+  // A hole poking out of the outer loop.
+  expect_input_error(raw({polygon({{0, 0}, {2, 0}, {2, 2}, {0, 2}}), {full_circle({2, 1}, 0.5, -1)}}),
+                     "self-intersecting");
+}
+
+// Quarter circle of radius r around the origin from angle a, as a rational quadratic.
+BoundaryEdge rational_quarter(double r, double a) {
+  const double w = std::sqrt(0.5);
+  const Vec2 u{std::cos(a), std::sin(a)}, v = perp(u);
+  BSplineCurve c{2, {0, 0, 0, 1, 1, 1}, {r * u, r * (u + v), r * v}, {1, w, 1}};
+  return BoundaryEdge{c, 0.0, 1.0, 0, {}, {}};
+}
+
+TEST(FaceModel, RecognisesArcsStoredAsBSplines) {
+  std::vector<BoundaryEdge> circle;
+  for (int i = 0; i < 4; ++i) circle.push_back(rational_quarter(1.5, i * kPi / 2));
+  const FaceModel face = build_face_model(raw({circle}));
+  for (const BoundaryEdge& e : face.loops[0].edges) {
+    ASSERT_EQ(curve_type(e.curve), CurveType::Circle);
+    const auto& arc = std::get<CircleCurve>(e.curve);
+    EXPECT_NEAR(arc.radius, 1.5, 1e-12);
+    EXPECT_NEAR(norm(arc.center), 0.0, 1e-12);
+    EXPECT_NEAR(edge_length(e), 1.5 * kPi / 2, 1e-12);
+  }
+  EXPECT_TRUE(face.corners.empty());  // tangent joins are smooth
+  EXPECT_NEAR(face.area, kPi * 2.25, 1e-12);
+  EXPECT_EQ(predicted_sum_k(face), -4);
+}
+
+TEST(FaceModel, KeepsFreeFormBSplines) {
+  // A cubic bulge on top of a unit square: not a line, not an arc.
+  BSplineCurve top{3, {0, 0, 0, 0, 1, 1, 1, 1}, {{1, 1}, {0.7, 1.6}, {0.3, 1.1}, {0, 1}}, {}};
+  auto edges = polygon({{0, 0}, {1, 0}, {1, 1}});
+  edges.pop_back();
+  edges.push_back(BoundaryEdge{top, 0.0, 1.0, 0, {}, {}});
+  edges.push_back(line({0, 1}, {0, 0}));
+  const FaceModel face = build_face_model(raw({edges}));
+  EXPECT_EQ(curve_type(face.loops[0].edges[2].curve), CurveType::BSpline);
+  // The exact integral agrees with a fine polygon through the curve.
+  double sampled = 0.0;
+  const auto pts = sample_loop(face.loops[0], 1e-9);
+  for (std::size_t i = 0; i < pts.size(); ++i) sampled += 0.5 * cross(pts[i], pts[(i + 1) % pts.size()]);
+  EXPECT_NEAR(face.area, sampled, 1e-8);
+}
+
+TEST(FaceModel, CuspsAreSpikesOrCracksByTheirGeometry) {
+  // Two circles touching at the origin from outside; the material between
+  // their arcs near the origin is a spike of zero angle.
+  const Vec2 c1{0, 1}, c2{0, -1};
+  // Loop: origin -> (1,-1) on circle 2, up the line x = 1, back to the origin on circle 1.
+  const BoundaryEdge lower{CircleCurve{c2, 1.0, 0.0, 1}, kPi / 2, 0.0, 0, {}, {}};
+  const BoundaryEdge upper{CircleCurve{c1, 1.0, 0.0, -1}, 0.0, kPi / 2, 0, {}, {}};
+  const std::vector<BoundaryEdge> spike{lower, line({1, -1}, {1, 1}), upper};
+  FaceModel face = build_face_model(raw({spike}));
+  ASSERT_FALSE(face.corners.empty());
+  bool found = false;
+  for (const Corner& c : face.corners) {
+    if (norm(c.position) < 1e-12) {
+      found = true;
+      EXPECT_NEAR(c.angle, 0.0, 1e-9);
+      EXPECT_EQ(c.nc, 0);
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(FaceModel, OptimalCornerTypeThresholds) {
+  const double deg = kPi / 180;
+  EXPECT_EQ(optimal_corner_type(10 * deg), 0);
+  EXPECT_EQ(optimal_corner_type(44.9 * deg), 0);
+  EXPECT_EQ(optimal_corner_type(45.1 * deg), 1);
+  EXPECT_EQ(optimal_corner_type(134.9 * deg), 1);
+  EXPECT_EQ(optimal_corner_type(135.1 * deg), 2);
+  EXPECT_EQ(optimal_corner_type(224.9 * deg), 2);
+  EXPECT_EQ(optimal_corner_type(225.1 * deg), 3);
+  EXPECT_EQ(optimal_corner_type(314.9 * deg), 3);
+  EXPECT_EQ(optimal_corner_type(315.1 * deg), 4);
+  EXPECT_EQ(optimal_corner_type(359 * deg), 4);
+}
+
+}  // namespace
+}  // namespace mm

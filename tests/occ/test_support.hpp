@@ -1,0 +1,29 @@
+#pragma once
+// Shared helpers for tests that work with real OCC shapes and the CLI.
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <string>
+#include <vector>
+
+namespace mm::test {
+
+std::string shared_dir();   // the team's reference geometry (../shared)
+std::string scratch_dir();  // a folder for files the tests write
+
+std::vector<std::string> brep_files(const std::string& folder);
+
+TopoDS_Face first_face(const TopoDS_Shape& shape);
+void write_brep(const TopoDS_Shape& shape, const std::string& path);
+
+// Area of the face from a fine polygon through points that OCC's own
+// discretiser places on its 3-D edges: an oracle independent of our curves.
+double discretised_area(const TopoDS_Face& face, int points_per_edge);
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+CliResult run_cli(const std::string& arguments);
+
+}  // namespace mm::test

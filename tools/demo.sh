@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The main job on the bundled example face: installs what is missing, builds,
+# and writes the face report (text and JSON) and its pictures into out/.
+#   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+input="${1:-$root/Resources/examples/bracket.brep}"
+name="$(basename "${input%.*}")"
+out="$root/out"
+
+"$root/tools/build.sh"
+mkdir -p "$out"
+cli="$root/build/bin/medialmesh"
+"$cli" info "$input" | tee "$out/$name.txt"
+"$cli" info "$input" --json >"$out/$name.json"
+"$cli" svg "$input" -o "$out/$name.svg"
+rsvg-convert -o "$out/$name.png" "$out/$name.svg"
+echo "demo: wrote $out/$name.txt, $name.json, $name.svg and $name.png"
