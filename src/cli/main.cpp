@@ -8,6 +8,7 @@
 
 #include "occ/occ_reader.hpp"
 #include "report/face_report.hpp"
+#include "report/medial_report.hpp"
 #include "svg/svg_writer.hpp"
 
 namespace {
@@ -15,6 +16,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: medialmesh info FILE [--face N]... [--json]\n"
     "       medialmesh svg FILE [--face N] -o OUT.svg\n"
+    "       medialmesh medial FILE [--face N] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
     "--face takes a number or a comma-separated list (info only).\n";
 
@@ -24,6 +26,7 @@ struct Options {
   std::vector<int> faces;
   bool json = false;
   std::string output;
+  std::string svg;
 };
 
 struct UsageError {
@@ -55,7 +58,8 @@ Options parse(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) throw UsageError{"no command given"};
   o.command = args[0];
-  if (o.command != "info" && o.command != "svg") throw UsageError{"unknown command '" + o.command + "'"};
+  if (o.command != "info" && o.command != "svg" && o.command != "medial")
+    throw UsageError{"unknown command '" + o.command + "'"};
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -68,6 +72,8 @@ Options parse(int argc, char** argv) {
       o.json = true;
     } else if (a == "-o" || a == "--output") {
       o.output = value();
+    } else if (a == "--svg") {
+      o.svg = value();
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError{"unknown option '" + a + "'"};
     } else if (o.file.empty()) {
@@ -78,7 +84,8 @@ Options parse(int argc, char** argv) {
   }
   if (o.file.empty()) throw UsageError{"no input file given"};
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
-  if (o.command == "svg" && o.faces.size() > 1) throw UsageError{"svg draws one face: give a single --face"};
+  if (o.command != "info" && o.faces.size() > 1) throw UsageError{o.command + " takes a single --face"};
+  if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
   return o;
 }
 
@@ -92,10 +99,20 @@ int run(const Options& o) {
     } else {
       for (const auto& face : faces) std::cout << mm::face_report_table(face);
     }
-  } else {
+  } else if (o.command == "svg") {
     mm::SvgCanvas canvas(mm::bounding_box(faces.front()), 800);
     mm::draw_face(canvas, faces.front());
+    mm::draw_corners(canvas, faces.front());
     canvas.save(o.output);
+  } else {
+    const mm::MedialAxis axis = mm::compute_medial_axis(faces.front());
+    if (o.json) std::cout << mm::medial_report_json(axis).dump(2) << "\n";
+    if (!o.svg.empty()) {
+      mm::SvgCanvas canvas(mm::bounding_box(faces.front()), 800);
+      mm::draw_face(canvas, faces.front());
+      mm::draw_medial_axis(canvas, faces.front(), axis);
+      canvas.save(o.svg);
+    }
   }
   return 0;
 }

@@ -326,13 +326,13 @@ double signed_area(const Loop& loop) {
   return area;
 }
 
-std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) {
+std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance) {
   std::vector<double> cuts = pieces(edge);
   if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());
-  std::vector<Vec2> points{edge.start};
+  std::vector<double> params{edge.t_start};
   if (curve_type(edge.curve) == CurveType::Line) {
-    points.push_back(edge.end);
-    return points;
+    params.push_back(edge.t_end);
+    return params;
   }
   // Bisect a parameter interval until its chord is close enough to the curve.
   const auto refine = [&](auto&& self, double a, double b, int depth) -> void {
@@ -347,10 +347,19 @@ std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) 
       self(self, a, m, depth + 1);
       self(self, m, b, depth + 1);
     } else {
-      points.push_back(pb.p);
+      params.push_back(b);
     }
   };
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) refine(refine, cuts[i], cuts[i + 1], 0);
+  params.back() = edge.t_end;
+  return params;
+}
+
+std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) {
+  const std::vector<double> params = sample_edge_parameters(edge, chord_tolerance);
+  std::vector<Vec2> points;
+  for (double t : params) points.push_back(evaluate_point(edge, t));
+  points.front() = edge.start;  // the snapped vertices, so loops close exactly
   points.back() = edge.end;
   return points;
 }

@@ -68,23 +68,62 @@ namespace {
 const char* const kCornerColours[5] = {"#d62728", "#ff7f0e", "#2ca02c", "#1f77b4", "#9467bd"};
 }  // namespace
 
+// A row of coloured dots with labels just under the face's bounding box.
+void draw_legend(SvgCanvas& canvas, const FaceModel& face,
+                 const std::vector<std::pair<std::string, std::string>>& items) {
+  const Box box = bounding_box(face);
+  const double unit = 1.0 / canvas.pixels_per_unit();
+  double x = box.min.x;
+  const double y = box.min.y - 22.0 * unit;
+  for (const auto& [colour, label] : items) {
+    canvas.dot({x, y}, 5, "fill:" + colour + ";stroke:black;stroke-width:0.5");
+    canvas.text({x + 8.0 * unit, y - 4.0 * unit}, label, 12, "fill:#333");
+    x += (16.0 + 7.0 * label.size()) * unit;
+  }
+}
+
 void draw_face(SvgCanvas& canvas, const FaceModel& face) {
   std::vector<std::vector<Vec2>> loops;
   for (const Loop& loop : face.loops) loops.push_back(sample_loop(loop, 0.5 / canvas.pixels_per_unit()));
   canvas.region(loops, "fill:#e8eef7;stroke:#333;stroke-width:1.5");
+}
+
+void draw_corners(SvgCanvas& canvas, const FaceModel& face) {
   for (const Corner& c : face.corners) {
     canvas.dot(c.position, 5, std::string("fill:") + kCornerColours[c.nc] + ";stroke:black;stroke-width:0.5");
   }
-  // Legend under the picture, in face coordinates just below the bounding box.
-  const Box box = bounding_box(face);
-  const double step = 70.0 / canvas.pixels_per_unit();
-  const Vec2 origin{box.min.x, box.min.y - 22.0 / canvas.pixels_per_unit()};
-  for (int nc = 0; nc <= 4; ++nc) {
-    const Vec2 at{origin.x + nc * step, origin.y};
-    canvas.dot(at, 5, std::string("fill:") + kCornerColours[nc] + ";stroke:black;stroke-width:0.5");
-    canvas.text({at.x + 8.0 / canvas.pixels_per_unit(), at.y - 4.0 / canvas.pixels_per_unit()},
-                "nc=" + std::to_string(nc), 12, "fill:#333");
+  std::vector<std::pair<std::string, std::string>> legend;
+  for (int nc = 0; nc <= 4; ++nc) legend.emplace_back(kCornerColours[nc], "nc=" + std::to_string(nc));
+  draw_legend(canvas, face, legend);
+}
+
+namespace {
+const char* vertex_colour(MedialVertexKind kind) {
+  switch (kind) {
+    case MedialVertexKind::Junction: return "#d62728";
+    case MedialVertexKind::Flare: return "#2ca02c";
+    case MedialVertexKind::FiniteContact: return "#1f77b4";
+    case MedialVertexKind::CurvatureContact: return "#ff7f0e";
   }
+  return "black";
+}
+}  // namespace
+
+void draw_medial_axis(SvgCanvas& canvas, const FaceModel& face, const MedialAxis& axis) {
+  for (const MedialEdge& e : axis.edges) {
+    std::vector<Vec2> pts;
+    for (const MedialPoint& p : e.points) pts.push_back(p.p);
+    canvas.polyline(pts, false, "fill:none;stroke:#444;stroke-width:1.5");
+  }
+  for (const MedialVertex& v : axis.vertices) {
+    canvas.dot(v.p, 4.5, std::string("fill:") + vertex_colour(v.kind) + ";stroke:black;stroke-width:0.5");
+  }
+  std::vector<std::pair<std::string, std::string>> legend;
+  for (MedialVertexKind kind : {MedialVertexKind::Junction, MedialVertexKind::Flare, MedialVertexKind::FiniteContact,
+                                MedialVertexKind::CurvatureContact}) {
+    legend.emplace_back(vertex_colour(kind), medial_vertex_kind_name(kind));
+  }
+  draw_legend(canvas, face, legend);
 }
 
 }  // namespace mm

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "boundary/face_model.hpp"
+#include "medial/medial_axis.hpp"
 
 namespace mm {
 
@@ -29,7 +30,11 @@ class SvgCanvas {
   std::ostringstream body_;
 };
 
-// The face filled, its outline, and its corners coloured by nc with a legend.
+// The face filled and outlined.
 void draw_face(SvgCanvas& canvas, const FaceModel& face);
+// The face's corners coloured by nc, with a legend under the picture.
+void draw_corners(SvgCanvas& canvas, const FaceModel& face);
+// The medial axis, its vertices coloured by kind, with a legend.
+void draw_medial_axis(SvgCanvas& canvas, const FaceModel& face, const MedialAxis& axis);
 
 }  // namespace mm

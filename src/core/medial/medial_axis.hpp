@@ -1,0 +1,56 @@
+#pragma once
+// The medial axis of a face: the centres of the maximal discs inside it, as a
+// graph of vertices and edges, every point with its radius and the boundary
+// places its disc touches (the paper's section 1.1).
+#include <vector>
+
+#include "boundary/face_model.hpp"
+#include "medial/nearest.hpp"
+
+namespace mm {
+
+struct MedialPoint {
+  Vec2 p;
+  double r = 0.0;
+  BoundaryPlace left;   // touching point on the left going from `from` to `to`
+  BoundaryPlace right;  // and on the right
+};
+
+// Angle between the radii to the two touching points, in [0, pi].
+double medial_angle(const MedialPoint& point);
+
+enum class MedialVertexKind {
+  Junction,          // the disc touches 3 or more places
+  Flare,             // a convex corner: r = 0
+  FiniteContact,     // the centre of a circular arc the disc touches along a range
+  CurvatureContact,  // the disc's curvature equals the boundary's at one touching point
+};
+const char* medial_vertex_kind_name(MedialVertexKind kind);
+
+struct MedialVertex {
+  Vec2 p;
+  double r = 0.0;
+  MedialVertexKind kind = MedialVertexKind::Junction;
+  std::vector<BoundaryPlace> touches;
+  // Finite contact: the angle the touched arc range subtends at the centre
+  // (pi for the round end of a slot, 2 pi for a full circle).
+  double contact_angle = 0.0;
+  std::vector<int> edges;  // incident medial edges
+};
+
+// A medial edge from vertex `from` to vertex `to` (both -1 for a closed loop
+// with no vertex, such as the axis of an annulus), as points in order.
+struct MedialEdge {
+  int from = -1;
+  int to = -1;
+  std::vector<MedialPoint> points;
+};
+
+struct MedialAxis {
+  std::vector<MedialVertex> vertices;
+  std::vector<MedialEdge> edges;
+};
+
+MedialAxis compute_medial_axis(const FaceModel& face);
+
+}  // namespace mm

@@ -1,0 +1,157 @@
+#include "medial/nearest.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mm {
+namespace {
+
+double lo(const BoundaryEdge& e) {
+  return std::min(e.t_start, e.t_end);
+}
+double hi(const BoundaryEdge& e) {
+  return std::max(e.t_start, e.t_end);
+}
+
+// Nearest parameter of a single edge to m, from the guess t.
+double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
+  const double a = lo(edge), b = hi(edge);
+  if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
+    return std::clamp(dot(m - line->origin, line->direction), a, b);
+  }
+  if (const auto* circle = std::get_if<CircleCurve>(&edge.curve)) {
+    const Vec2 d = m - circle->center;
+    if (norm(d) < 1e-300) return std::clamp(t, a, b);
+    double u = circle->sense * (std::atan2(d.y, d.x) - circle->start_angle);
+    u = a + std::fmod(std::fmod(u - a, 2 * kPi) + 2 * kPi, 2 * kPi);  // into [a, a + 2pi)
+    if (u <= b) return u;
+    // Outside the arc: the nearer end (angularly the nearer is the nearer in space).
+    return (u - b) < (a + 2 * kPi - u) ? b : a;
+  }
+  // General curve: Newton's method on (C(t) - m) . C'(t) = 0, kept in range.
+  t = std::clamp(t, a, b);
+  for (int i = 0; i < 50; ++i) {
+    const CurvePoint c = evaluate(edge.curve, t);
+    const double g = dot(c.p - m, c.d1);
+    const double h = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
+    double next = h > 0 ? t - g / h : t - g / std::max(dot(c.d1, c.d1), 1e-300);
+    next = std::clamp(next, a, b);
+    if (std::abs(next - t) <= 1e-15 * (b - a)) {
+      t = next;
+      break;
+    }
+    t = next;
+  }
+  // Newton may settle on an end where the other end is nearer.
+  const double dt = distance(evaluate(edge.curve, t).p, m);
+  if (distance(evaluate(edge.curve, a).p, m) < dt) t = a;
+  if (distance(evaluate(edge.curve, b).p, m) < std::min(dt, distance(evaluate(edge.curve, t).p, m))) t = b;
+  return t;
+}
+
+}  // namespace
+
+BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
+  for (const Loop& loop : face.loops) corner_.emplace_back(loop.edges.size(), false);
+  for (const Corner& c : face.corners) corner_[c.loop][c.vertex] = true;
+}
+
+BoundaryPlace BoundaryIndex::place(int loop, int e, double t) const {
+  const BoundaryEdge& edge = face_.loops[loop].edges[e];
+  BoundaryPlace p{loop, e, t, -1, evaluate(edge.curve, t).p};
+  const double tol = 1e-12 * std::max(1.0, std::abs(edge.t_end - edge.t_start));
+  if (std::abs(t - edge.t_start) <= tol) {
+    p.point = edge.start;
+    if (is_corner(loop, e)) p.corner = e;
+  } else if (std::abs(t - edge.t_end) <= tol) {
+    p.point = edge.end;
+    const int next = (e + 1) % edge_count(loop);
+    if (is_corner(loop, next)) p.corner = next;
+  }
+  return p;
+}
+
+BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m) {
+  if (start.corner >= 0) return start;  // a corner is a place of its own
+  int e = start.edge;
+  double t = start.t;
+  const int count = index.edge_count(start.loop);
+  for (int step = 0; step <= count; ++step) {
+    const BoundaryEdge& edge = index.edge(start.loop, e);
+    t = nearest_parameter(edge, t, m);
+    BoundaryPlace here = index.place(start.loop, e, t);
+    const bool at_start = std::abs(t - edge.t_start) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
+    const bool at_end = std::abs(t - edge.t_end) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
+    if (here.corner >= 0 || (!at_start && !at_end)) return here;
+    // At a tangent join: carry on along the neighbouring edge unless it leads away.
+    const int next = at_end ? (e + 1) % count : (e + count - 1) % count;
+    const BoundaryEdge& neighbour = index.edge(start.loop, next);
+    const double nt = nearest_parameter(neighbour, at_end ? neighbour.t_start : neighbour.t_end, m);
+    const BoundaryPlace there = index.place(start.loop, next, nt);
+    if (distance(there.point, m) >= distance(here.point, m) * (1 - 1e-14)) return here;
+    e = next;
+    t = nt;
+  }
+  return index.place(start.loop, e, t);
+}
+
+bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance) {
+  return a.loop == b.loop && distance(a.point, b.point) <= tolerance;
+}
+
+Bisected bisect(const BoundaryIndex& index, Vec2 m, BoundaryPlace a, BoundaryPlace b) {
+  const double tolerance = 1e-13 * index.face().size;
+  Bisected result;
+  for (int i = 0; i < 60; ++i) {
+    a = nearest_on_run(index, a, m);
+    b = nearest_on_run(index, b, m);
+    const double da = distance(m, a.point), db = distance(m, b.point);
+    result = {m, 0.5 * (da + db), a, b, false};
+    const double h = da - db;
+    if (std::abs(h) <= tolerance) {
+      result.converged = true;
+      break;
+    }
+    if (da < 1e-300 || db < 1e-300) break;
+    const Vec2 g = (m - a.point) / da - (m - b.point) / db;
+    const double g2 = dot(g, g);
+    if (g2 < 1e-24) break;  // both feet in one direction: no bisector here
+    m = m - (h / g2) * g;
+  }
+  return result;
+}
+
+Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& start) {
+  const double tolerance = 1e-13 * index.face().size;
+  std::vector<BoundaryPlace> places = start;
+  Equidistant result;
+  for (int i = 0; i < 60; ++i) {
+    for (auto& p : places) p = nearest_on_run(index, p, m);
+    const double d0 = distance(m, places[0].point), d1 = distance(m, places[1].point),
+                 d2 = distance(m, places[2].point);
+    result = {m, (d0 + d1 + d2) / 3, places, false};
+    const double f1 = d0 - d1, f2 = d0 - d2;
+    if (std::abs(f1) <= tolerance && std::abs(f2) <= tolerance) {
+      result.converged = true;
+      break;
+    }
+    if (d0 < 1e-300 || d1 < 1e-300 || d2 < 1e-300) break;
+    const Vec2 g0 = (m - places[0].point) / d0, g1 = (m - places[1].point) / d1, g2 = (m - places[2].point) / d2;
+    const Vec2 r1 = g0 - g1, r2 = g0 - g2;  // Jacobian rows
+    const double det = cross(r1, r2);
+    if (std::abs(det) < 1e-14) break;
+    // Solve [r1; r2] step = [f1; f2].
+    const Vec2 step{(f1 * r2.y - f2 * r1.y) / det, (r1.x * f2 - r2.x * f1) / det};
+    m = m - step;
+  }
+  return result;
+}
+
+double curvature(const BoundaryEdge& edge, double t) {
+  const CurvePoint c = evaluate(edge.curve, t);
+  const double speed = norm(c.d1);
+  const double direction = edge.t_end >= edge.t_start ? 1.0 : -1.0;
+  return direction * cross(c.d1, c.d2) / (speed * speed * speed);
+}
+
+}  // namespace mm

@@ -1,0 +1,67 @@
+#pragma once
+// Exact distances to the boundary: nearest points on the true curves, medial
+// points placed on exact bisectors, junctions on exact equidistant points.
+#include <vector>
+
+#include "boundary/face_model.hpp"
+
+namespace mm {
+
+// A place on the boundary: edge `edge` of loop `loop` at parameter t. When the
+// place is a corner (t at an end of the edge where the boundary is not smooth)
+// `corner` holds that loop vertex's index, else -1.
+struct BoundaryPlace {
+  int loop = 0;
+  int edge = 0;
+  double t = 0.0;
+  int corner = -1;
+  Vec2 point;
+};
+
+// The face with, per loop vertex, whether it is a corner (not a tangent join).
+class BoundaryIndex {
+ public:
+  explicit BoundaryIndex(const FaceModel& face);
+  const FaceModel& face() const { return face_; }
+  bool is_corner(int loop, int vertex) const { return corner_[loop][vertex]; }
+  const BoundaryEdge& edge(int loop, int e) const { return face_.loops[loop].edges[e]; }
+  int edge_count(int loop) const { return static_cast<int>(face_.loops[loop].edges.size()); }
+  BoundaryPlace place(int loop, int edge, double t) const;  // fills corner and point
+
+ private:
+  const FaceModel& face_;
+  std::vector<std::vector<bool>> corner_;
+};
+
+// Nearest point to m on the smooth run of boundary through `start`, found by
+// Newton's method from start.t and carried across tangent joins.
+BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m);
+
+// True if a and b are the same point of one smooth run (within tolerance).
+bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance);
+
+struct Bisected {
+  Vec2 p;
+  double r = 0.0;
+  BoundaryPlace a, b;
+  bool converged = false;
+};
+
+// The point of the exact bisector of the runs through a and b nearest to m.
+Bisected bisect(const BoundaryIndex& index, Vec2 m, BoundaryPlace a, BoundaryPlace b);
+
+struct Equidistant {
+  Vec2 p;
+  double r = 0.0;
+  std::vector<BoundaryPlace> places;
+  bool converged = false;
+};
+
+// The point near m equally far from the runs through three places.
+Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& places);
+
+// Curvature at parameter t of an edge, positive where the boundary bends
+// round the material (its centre of curvature is inside).
+double curvature(const BoundaryEdge& edge, double t);
+
+}  // namespace mm

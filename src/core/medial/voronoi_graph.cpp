@@ -1,0 +1,141 @@
+#include "medial/voronoi_graph.hpp"
+
+#include <algorithm>
+#include <boost/polygon/point_data.hpp>
+#include <boost/polygon/segment_data.hpp>
+#include <boost/polygon/voronoi.hpp>
+#include <cmath>
+#include <unordered_map>
+
+namespace mm {
+namespace {
+
+namespace bp = boost::polygon;
+using IntPoint = bp::point_data<int>;
+using IntSegment = bp::segment_data<int>;
+
+// Boost.Polygon wants integer coordinates: the face is scaled so its extent
+// spans about 2^29 units, far finer than any tolerance we work to.
+struct IntegerGrid {
+  Vec2 origin;
+  double scale = 1.0;
+  IntPoint to_int(Vec2 p) const {
+    return IntPoint(static_cast<int>(std::lround((p.x - origin.x) * scale)),
+                    static_cast<int>(std::lround((p.y - origin.y) * scale)));
+  }
+  Vec2 to_face(double x, double y) const { return {origin.x + x / scale, origin.y + y / scale}; }
+};
+
+Site site_of(const bp::voronoi_cell<double>& cell) {
+  Site site;
+  site.segment = static_cast<int>(cell.source_index());
+  switch (cell.source_category()) {
+    case bp::SOURCE_CATEGORY_SEGMENT_START_POINT: site.part = Site::kStart; break;
+    case bp::SOURCE_CATEGORY_SEGMENT_END_POINT: site.part = Site::kEnd; break;
+    default: site.part = Site::kSegment; break;
+  }
+  return site;
+}
+
+// Is point q (not on the boundary) on the material side of the site? For a
+// segment: left of its line. For a vertex of the discretisation: left of both
+// segments meeting there, within rounding (its Voronoi cell lies in the
+// material only where the boundary turns right, at a reflex vertex, and is a
+// sliver there when the turn is slight).
+bool material_side(const VoronoiGraph& g, const Site& site, Vec2 q) {
+  const BoundarySegment& s = g.segments[site.segment];
+  if (site.part == Site::kSegment) return cross(s.p1 - s.p0, q - s.p0) > 0.0;
+  const BoundarySegment& in = site.part == Site::kStart ? g.segments[s.previous] : s;
+  const BoundarySegment& out = site.part == Site::kStart ? s : g.segments[s.next];
+  const Vec2 v = site.part == Site::kStart ? s.p0 : s.p1;
+  const Vec2 a = normalized(in.p1 - in.p0), b = normalized(out.p1 - out.p0), d = q - v;
+  const double slack = -1e-9 * norm(d);
+  return cross(a, d) >= slack && cross(b, d) >= slack;
+}
+
+}  // namespace
+
+Vec2 site_point(const VoronoiGraph& graph, const Site& site, Vec2 near) {
+  const BoundarySegment& s = graph.segments[site.segment];
+  if (site.part == Site::kStart) return s.p0;
+  if (site.part == Site::kEnd) return s.p1;
+  const Vec2 d = s.p1 - s.p0;
+  const double u = std::clamp(dot(near - s.p0, d) / dot(d, d), 0.0, 1.0);
+  return s.p0 + u * d;
+}
+
+VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_tolerance) {
+  VoronoiGraph graph;
+  const Box box = bounding_box(face);
+  IntegerGrid grid{box.min, std::ldexp(1.0, 29) / std::max(box.max.x - box.min.x, box.max.y - box.min.y)};
+
+  std::vector<IntSegment> input;
+  for (std::size_t li = 0; li < face.loops.size(); ++li) {
+    const std::size_t first = graph.segments.size();
+    const auto& edges = face.loops[li].edges;
+    for (std::size_t ei = 0; ei < edges.size(); ++ei) {
+      const std::vector<double> params = sample_edge_parameters(edges[ei], chord_tolerance);
+      std::vector<Vec2> pts;
+      for (double t : params) pts.push_back(evaluate(edges[ei].curve, t).p);
+      pts.front() = edges[ei].start;  // snapped vertices: neighbouring edges share them exactly
+      pts.back() = edges[ei].end;
+      for (std::size_t k = 0; k + 1 < params.size(); ++k) {
+        // Chords share their rounded end points, so a chord shorter than the
+        // grid can be dropped without opening the loop.
+        const IntPoint a = grid.to_int(pts[k]), b = grid.to_int(pts[k + 1]);
+        if (a == b) continue;
+        input.emplace_back(a, b);
+        graph.segments.push_back({static_cast<int>(li), static_cast<int>(ei), params[k], params[k + 1],
+                                  grid.to_face(a.x(), a.y()), grid.to_face(b.x(), b.y()), 0, 0});
+      }
+    }
+    const std::size_t count = graph.segments.size() - first;
+    for (std::size_t k = 0; k < count; ++k) {
+      graph.segments[first + k].previous = static_cast<int>(first + (k + count - 1) % count);
+      graph.segments[first + k].next = static_cast<int>(first + (k + 1) % count);
+    }
+  }
+
+  bp::voronoi_diagram<double> diagram;
+  bp::construct_voronoi(input.begin(), input.end(), &diagram);
+
+  std::unordered_map<const bp::voronoi_vertex<double>*, int> vertex_ids;
+  const auto vertex_id = [&](const bp::voronoi_vertex<double>* v) {
+    const auto found = vertex_ids.find(v);
+    if (found != vertex_ids.end()) return found->second;
+    VoronoiVertex vertex;
+    vertex.p = grid.to_face(v->x(), v->y());
+    const auto* e = v->incident_edge();
+    do {
+      vertex.sites.push_back(site_of(*e->cell()));
+      e = e->rot_next();
+    } while (e != v->incident_edge());
+    vertex.r = distance(vertex.p, site_point(graph, vertex.sites.front(), vertex.p));
+    graph.vertices.push_back(vertex);
+    vertex_ids.emplace(v, static_cast<int>(graph.vertices.size()) - 1);
+    return static_cast<int>(graph.vertices.size()) - 1;
+  };
+
+  for (const auto& edge : diagram.edges()) {
+    // Each edge appears twice (once per side); keep one, primary and finite.
+    if (&edge > edge.twin() || !edge.is_primary() || !edge.is_finite()) continue;
+    const Site left = site_of(*edge.cell()), right = site_of(*edge.twin()->cell());
+    const Vec2 a = grid.to_face(edge.vertex0()->x(), edge.vertex0()->y());
+    const Vec2 b = grid.to_face(edge.vertex1()->x(), edge.vertex1()->y());
+    // Test the end farther from the boundary against a segment site if there
+    // is one; between two points, the edge is inside if either's cell is.
+    bool inside = false;
+    if (left.part == Site::kSegment || right.part == Site::kSegment) {
+      const Site& judge = left.part == Site::kSegment ? left : right;
+      const double da = distance(a, site_point(graph, judge, a)), db = distance(b, site_point(graph, judge, b));
+      inside = material_side(graph, judge, da > db ? a : b);
+    } else {
+      inside = material_side(graph, left, 0.5 * (a + b)) || material_side(graph, right, 0.5 * (a + b));
+    }
+    if (!inside) continue;
+    graph.edges.push_back({vertex_id(edge.vertex0()), vertex_id(edge.vertex1()), left, right});
+  }
+  return graph;
+}
+
+}  // namespace mm
