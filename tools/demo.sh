@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the bundled example face: installs what is missing, builds,
-# and writes the face report (text and JSON) and its pictures into out/.
+# and writes the face report (text and JSON), the medial axis (JSON) and their
+# pictures into out/.
 #   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,4 +16,7 @@ cli="$root/build/bin/medialmesh"
 "$cli" info "$input" --json >"$out/$name.json"
 "$cli" svg "$input" -o "$out/$name.svg"
 rsvg-convert -o "$out/$name.png" "$out/$name.svg"
-echo "demo: wrote $out/$name.txt, $name.json, $name.svg and $name.png"
+"$cli" medial "$input" --json --svg "$out/$name.medial.svg" >"$out/$name.medial.json"
+rsvg-convert -o "$out/$name.medial.png" "$out/$name.medial.svg"
+echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and corners)," \
+  "$name.medial.json, $name.medial.svg/.png (medial axis)"

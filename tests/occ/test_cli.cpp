@@ -92,6 +92,34 @@ TEST(Cli, InfoTableAndSvg) {
   EXPECT_NE(text.find("#1f77b4"), std::string::npos);  // the reflex corner's colour (nc = 3)
 }
 
+TEST(Cli, MedialJsonAndSvg) {
+  const std::string svg = scratch_dir() + "/rectangle_medial.svg";
+  std::remove(svg.c_str());
+  const test::CliResult r = run_cli("medial " + shared_dir() + "/geometry/rectangle.brep --json --svg " + svg);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  ASSERT_EQ(json.size(), 2u);
+  ASSERT_EQ(json["vertices"].size(), 6u);
+  int junctions = 0;
+  for (const auto& v : json["vertices"]) {
+    EXPECT_EQ(v.size(), 4u);
+    const std::string kind = v["kind"];
+    EXPECT_TRUE(kind == "junction" || kind == "flare") << kind;
+    junctions += kind == "junction";
+  }
+  EXPECT_EQ(junctions, 2);
+  ASSERT_EQ(json["edges"].size(), 5u);
+  for (const auto& e : json["edges"]) {
+    EXPECT_EQ(e.size(), 3u);
+    EXPECT_GE(e["polyline"].size(), 2u);
+    EXPECT_EQ(e["polyline"][0].size(), 3u);  // x, y, r
+  }
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("junction"), std::string::npos);                                     // the legend
+  EXPECT_EQ(run_cli("medial " + shared_dir() + "/geometry/rectangle.brep").exit_code, 2);  // needs an output
+}
+
 TEST(Cli, FileWithSeveralFacesNeedsAFaceNumber) {
   const std::string step = shared_dir() + "/realcad/step/trimesh_featuretype.STEP";
   expect_bad_input("info " + step, step, "choose one with --face N (planar faces: ");

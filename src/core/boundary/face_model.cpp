@@ -20,8 +20,6 @@ constexpr double kArcRadiusTolerance = 1e-3;
 constexpr double kArcSizeTolerance = 1e-5;
 // Tangents closer than this to opposite directions make a (near) cusp.
 constexpr double kCuspAngle = 1.0 * kPi / 180.0;
-// Sampling never turns by more than this between consecutive points.
-constexpr double kMaxSampleTurn = 15.0 * kPi / 180.0;
 
 std::string format(double v) {
   std::ostringstream s;
@@ -326,7 +324,7 @@ double signed_area(const Loop& loop) {
   return area;
 }
 
-std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance) {
+std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance, double max_turn) {
   std::vector<double> cuts = pieces(edge);
   if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());
   std::vector<double> params{edge.t_start};
@@ -343,7 +341,7 @@ std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chor
     const double len = norm(chord);
     const double deviation = len > 0 ? std::abs(cross(chord, pm - pa.p)) / len : distance(pm, pa.p);
     const double turn = std::abs(signed_angle(pa.d1, pb.d1));
-    if (depth < 24 && (deviation > chord_tolerance || turn > kMaxSampleTurn)) {
+    if (depth < 24 && (deviation > chord_tolerance || turn > max_turn)) {
       self(self, a, m, depth + 1);
       self(self, m, b, depth + 1);
     } else {

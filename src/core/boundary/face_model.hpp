@@ -91,8 +91,10 @@ double edge_length(const BoundaryEdge& edge);
 // Points along the edge, start and end included, with chordal deviation at
 // most chord_tolerance and no more than 15 degrees of turning between points.
 std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance);
-// The curve parameters of those points, t_start first and t_end last.
-std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance);
+// The curve parameters of those points, t_start first and t_end last; the
+// chords turn by at most max_turn radians (15 degrees by default).
+std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance,
+                                           double max_turn = 15.0 * kPi / 180.0);
 // The loop as a closed polyline (first point not repeated at the end).
 std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance);
 

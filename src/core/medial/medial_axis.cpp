@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "medial/voronoi_graph.hpp"
 
@@ -37,9 +38,10 @@ class Builder {
       : face_(face), index_(face), graph_(interior_voronoi_graph(face, kChordTolerance * face.size)) {}
 
   MedialAxis build() {
+    index_voronoi_edges();
+    add_finite_contacts();
     keep_genuine_edges();
     build_nodes();
-    add_finite_contacts();
     prune_ripple_branches();
     classify_nodes();
     trace_chains();
@@ -64,14 +66,33 @@ class Builder {
       const Vec2 d = s.p1 - s.p0;
       t = s.t0 + std::clamp(dot(m - s.p0, d) / dot(d, d), 0.0, 1.0) * (s.t1 - s.t0);
     }
-    return nearest_on_run(index_, index_.place(s.loop, s.edge, t), m);
+    BoundaryPlace place = index_.place(s.loop, s.edge, t);
+    place.corner_itself = site.part != Site::kSegment && place.corner >= 0;
+    return nearest_on_run(index_, place, m);
   }
 
+  // An edge is genuine if the exact bisector of its two sites' places exists
+  // near its midpoint with two distinct touching points. Bisectors of two
+  // chords of one smooth curve, or of an edge and a corner at its own end,
+  // collapse onto a single touching point instead.
   void keep_genuine_edges() {
+    const double same = kSamePlace * size();
     for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
       const VoronoiEdge& e = graph_.edges[i];
       const Vec2 m = 0.5 * (graph_.vertices[e.from].p + graph_.vertices[e.to].p);
-      if (!same_place(place_of(e.left, m), place_of(e.right, m), kSamePlace * size())) kept_.push_back(i);
+      const BoundaryPlace a = place_of(e.left, m), b = place_of(e.right, m);
+      if (same_place(a, b, same)) continue;
+      const Bisected exact = bisect(index_, m, a, b);
+      if (exact.converged && !same_place(exact.a, exact.b, same)) kept_.push_back(static_cast<int>(i));
+    }
+  }
+
+  // Which interior Voronoi edges meet at each Voronoi vertex.
+  void index_voronoi_edges() {
+    voronoi_neighbours_.assign(graph_.vertices.size(), {});
+    for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
+      voronoi_neighbours_[graph_.edges[i].from].push_back(static_cast<int>(i));
+      voronoi_neighbours_[graph_.edges[i].to].push_back(static_cast<int>(i));
     }
   }
 
@@ -155,8 +176,9 @@ class Builder {
       }
       const Vec2 d = s.p1 - s.p0;
       const double u = std::clamp(dot(c - s.p0, d) / dot(d, d), 0.0, 1.0);
-      if (distance(c, s.p0 + u * d) < r * (1 - 1e-6)) {
-        // A chord may cut inside a convex curve by its sag: ask the exact curve.
+      // The curve strays from its chord by up to the chord tolerance (either
+      // side): near enough, ask the exact curve.
+      if (distance(c, s.p0 + u * d) < r + 2 * kChordTolerance * size()) {
         const BoundaryPlace near = nearest_on_run(index_, index_.place(s.loop, s.edge, s.t0 + u * (s.t1 - s.t0)), c);
         if (distance(c, near.point) < r * (1 - 1e-9)) return false;
       }
@@ -170,27 +192,45 @@ class Builder {
     return norm(a) > 0 && norm(b) > 0 ? std::abs(signed_angle(a, b)) : 0.0;
   }
 
-  // The finite-contact vertex an axis ending at p runs into, or -1: the
-  // discretised axis stops short of the arc's centre by a fraction of its radius.
-  int finite_contact_near(Vec2 p) const {
+  // The finite-contact vertex the axis ending at this node runs into, or -1:
+  // the nearest one whose centre lies on the exact bisector of the places the
+  // end's edge touches (both at the arc's radius from it). The discretised
+  // axis stops short of the centre, by up to a few radii where a notch is deep.
+  int finite_contact_for(int node) const {
+    const VoronoiEdge& e = graph_.edges[nodes_[node].edges.front()];
+    const Vec2 p = node_point(node);
+    int best = -1;
     for (std::size_t i = 0; i < axis_.vertices.size(); ++i) {
       const MedialVertex& v = axis_.vertices[i];
-      if (v.kind == MedialVertexKind::FiniteContact && distance(v.p, p) <= 0.25 * v.r) return static_cast<int>(i);
+      if (v.kind != MedialVertexKind::FiniteContact || distance(v.p, p) > 3 * v.r) continue;
+      if (best >= 0 && distance(v.p, p) >= distance(axis_.vertices[best].p, p)) continue;
+      const double tolerance = 1e-9 * size();
+      const double left = distance(v.p, place_of(e.left, v.p).point),
+                   right = distance(v.p, place_of(e.right, v.p).point);
+      if (std::abs(left - v.r) <= tolerance && std::abs(right - v.r) <= tolerance) best = static_cast<int>(i);
     }
-    return -1;
+    return best;
+  }
+
+  // A branch from a curvature peak is medial only if the disc at the centre of
+  // curvature holds no boundary: else another edge cuts it off first.
+  bool curvature_end_is_medial(int node) const {
+    const Vec2 p = node_point(node);
+    const std::optional<MedialVertex> v = curvature_contact(touches_at(node, p));
+    return v && disc_is_empty(v->p, v->r);
   }
 
   // Removes branches from an end inside the face (not a corner, not a finite
-  // contact) to the next junction whose medial angle stays below kRippleAngle,
-  // until none is left.
+  // contact) to the next junction whose medial angle stays below kRippleAngle
+  // or whose end is no medial point, until none is left.
   void prune_ripple_branches() {
     bool changed = true;
     while (changed) {
       changed = false;
       for (std::size_t n = 0; n < nodes_.size(); ++n) {
         if (nodes_[n].edges.size() != 1) continue;
-        const Vec2 p = node_point(static_cast<int>(n));
-        if (graph_.vertices[node_vertex_[n]].r <= 1e-6 * size() || finite_contact_near(p) >= 0) continue;
+        if (graph_.vertices[node_vertex_[n]].r <= 1e-6 * size() || finite_contact_for(static_cast<int>(n)) >= 0)
+          continue;
         std::vector<int> branch;
         int node = static_cast<int>(n), e = nodes_[n].edges.front();
         double largest = 0.0;
@@ -202,7 +242,8 @@ class Builder {
           if (nodes_[node].edges.size() != 2) break;
           e = nodes_[node].edges[0] == e ? nodes_[node].edges[1] : nodes_[node].edges[0];
         }
-        if (largest >= kRippleAngle || nodes_[node].edges.size() == 1) continue;
+        if (nodes_[node].edges.size() == 1) continue;
+        if (largest >= kRippleAngle && curvature_end_is_medial(static_cast<int>(n))) continue;
         for (int f : branch) {
           const auto [a, b] = edge_nodes_.at(f);
           for (int end : {a, b}) {
@@ -244,19 +285,67 @@ class Builder {
     }
   }
 
+  // Candidate places for a junction: the sites of every Voronoi cell around
+  // the node and around Voronoi vertices close by (near-degenerate
+  // junctions, where several places are almost on one circle, come as close
+  // pairs of Voronoi vertices that may pair the places up wrongly).
+  std::vector<BoundaryPlace> junction_candidates(int node, Vec2 p) const {
+    std::vector<BoundaryPlace> places;
+    const auto add = [&](const Site& site) {
+      const BoundaryPlace b = place_of(site, p);
+      for (const auto& q : places)
+        if (same_place(q, b, kSamePlace * size())) return;
+      places.push_back(b);
+    };
+    // Voronoi vertices within reach over any interior Voronoi edge, kept or not.
+    std::vector<int> nearby{node_vertex_[node]};
+    for (std::size_t k = 0; k < nearby.size() && nearby.size() < 64; ++k) {
+      for (int e : voronoi_neighbours_[nearby[k]]) {
+        const VoronoiEdge& edge = graph_.edges[e];
+        const int other = edge.from == nearby[k] ? edge.to : edge.from;
+        if (distance(graph_.vertices[other].p, p) <= kPointSpacing * size() &&
+            std::find(nearby.begin(), nearby.end(), other) == nearby.end())
+          nearby.push_back(other);
+      }
+    }
+    for (int v : nearby) {
+      for (const Site& site : graph_.vertices[v].sites) add(site);
+    }
+    return places;
+  }
+
+  // The exact junction: the point equally far from three candidate places
+  // with no candidate nearer, closest to where the Voronoi diagram put it.
   void make_junction(int node, Vec2 p) {
     MedialVertex v;
     v.kind = MedialVertexKind::Junction;
-    v.touches = touches_at(node, p);
     v.p = p;
-    v.r = v.touches.empty() ? 0.0 : distance(p, v.touches.front().point);
-    if (v.touches.size() >= 3) {
-      const Equidistant exact = equidistant(index_, p, {v.touches[0], v.touches[1], v.touches[2]});
-      if (exact.converged) {
-        v.p = exact.p;
-        v.r = exact.r;
-        for (auto& t : v.touches) t = nearest_on_run(index_, t, v.p);
+    const std::vector<BoundaryPlace> candidates = junction_candidates(node, p);
+    double best = 1e300;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      for (std::size_t j = i + 1; j < candidates.size(); ++j) {
+        for (std::size_t k = j + 1; k < candidates.size(); ++k) {
+          const Equidistant exact = equidistant(index_, p, {candidates[i], candidates[j], candidates[k]});
+          if (!exact.converged || distance(exact.p, p) >= best) continue;
+          std::vector<BoundaryPlace> touches;
+          bool empty = true;
+          for (const BoundaryPlace& c : candidates) {
+            const BoundaryPlace at = nearest_on_run(index_, c, exact.p);
+            const double d = distance(at.point, exact.p);
+            empty = empty && d >= exact.r * (1 - 1e-9);
+            if (d <= exact.r * (1 + 1e-9)) touches.push_back(at);
+          }
+          if (!empty) continue;
+          best = distance(exact.p, p);
+          v.p = exact.p;
+          v.r = exact.r;
+          v.touches = touches;
+        }
       }
+    }
+    if (v.touches.empty()) {  // no exact solution: keep the discretised one
+      v.touches = candidates;
+      v.r = candidates.empty() ? 0.0 : distance(p, candidates.front().point);
     }
     nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
     axis_.vertices.push_back(v);
@@ -279,12 +368,18 @@ class Builder {
       }
     }
     // The round end of a slot: joins the finite-contact vertex of its arc.
-    const int finite_contact = finite_contact_near(p);
+    const int finite_contact = finite_contact_for(node);
     if (finite_contact >= 0) {
       nodes_[node].vertex = finite_contact;
       return;
     }
-    nodes_[node].vertex = add_vertex(curvature_contact(touches, p, r));
+    // A curvature contact, snapped to its exact place when there is one.
+    MedialVertex fallback;
+    fallback.kind = MedialVertexKind::CurvatureContact;
+    fallback.p = p;
+    fallback.r = r;
+    fallback.touches = touches;
+    nodes_[node].vertex = add_vertex(curvature_contact(touches).value_or(fallback));
   }
 
   int add_vertex(const MedialVertex& v) {
@@ -343,17 +438,23 @@ class Builder {
   // The end of an axis between two places of one smooth curve: the centre of
   // curvature where the curvature between them peaks (an ellipse's is at
   // x = +-(a^2 - b^2)/a on its major axis).
-  MedialVertex curvature_contact(const std::vector<BoundaryPlace>& touches, Vec2 p, double r) const {
-    MedialVertex v;
-    v.kind = MedialVertexKind::CurvatureContact;
-    v.p = p;
-    v.r = r;
-    v.touches = touches;
-    if (touches.size() < 2 || touches[0].loop != touches[1].loop) return v;
+  // Empty if there is no interior curvature peak to snap to.
+  std::optional<MedialVertex> curvature_contact(const std::vector<BoundaryPlace>& touches) const {
+    if (touches.empty()) return std::nullopt;
+    std::vector<Stretch> stretches;
+    if (touches.size() >= 2 && touches[0].loop == touches[1].loop) {
+      stretches = run_between(touches[0], touches[1]);
+    } else if (touches.size() == 1) {
+      // The feet have already met: look round the one place left.
+      const BoundaryPlace& at = touches[0];
+      const BoundaryEdge& edge = index_.edge(at.loop, at.edge);
+      const double lo = std::min(edge.t_start, edge.t_end), hi = std::max(edge.t_start, edge.t_end);
+      const double reach = 0.05 * (hi - lo);
+      stretches.push_back({at.loop, at.edge, std::max(lo, at.t - reach), std::min(hi, at.t + reach)});
+    }
     // Coarse search along the stretch between the feet, then golden-section refinement.
     const Stretch* best = nullptr;
     double best_t = 0.0, best_k = -1e300, step = 0.0;
-    const std::vector<Stretch> stretches = run_between(touches[0], touches[1]);
     for (const Stretch& s : stretches) {
       const BoundaryEdge& edge = index_.edge(s.loop, s.edge);
       for (int k = 0; k <= 32; ++k) {
@@ -362,7 +463,7 @@ class Builder {
         if (kappa > best_k) best = &s, best_t = t, best_k = kappa, step = std::abs(s.t1 - s.t0) / 32;
       }
     }
-    if (!best || best_k <= 0) return v;
+    if (!best || best_k <= 0) return std::nullopt;
     const BoundaryEdge& edge = index_.edge(best->loop, best->edge);
     const double lo = std::min(best->t0, best->t1), hi = std::max(best->t0, best->t1);
     double a = std::max(lo, best_t - step), b = std::min(hi, best_t + step);
@@ -378,6 +479,9 @@ class Builder {
     }
     const double t = 0.5 * (a + b);
     const BoundaryPlace at = index_.place(best->loop, best->edge, t);
+    if (at.corner >= 0) return std::nullopt;  // the peak is at a corner: no curvature contact here
+    MedialVertex v;
+    v.kind = MedialVertexKind::CurvatureContact;
     v.r = 1.0 / curvature(edge, t);
     v.p = at.point + v.r * perp(edge_tangent(edge, t));
     v.touches = {at};
@@ -399,7 +503,15 @@ class Builder {
     if (v.kind == MedialVertexKind::Flare || v.kind == MedialVertexKind::CurvatureContact) {
       return {v.p, v.r, v.touches.front(), v.touches.front()};
     }
-    return {v.p, v.r, place_of(e.left, v.p), place_of(e.right, v.p)};
+    // At a junction, the touching places of the vertex nearest to the sites'.
+    const auto touch = [&](const Site& site) {
+      const BoundaryPlace own = place_of(site, v.p);
+      if (v.kind != MedialVertexKind::Junction || std::abs(distance(own.point, v.p) - v.r) <= 1e-9 * size()) return own;
+      return *std::min_element(v.touches.begin(), v.touches.end(), [&](const auto& a, const auto& b) {
+        return distance(a.point, own.point) < distance(b.point, own.point);
+      });
+    };
+    return {v.p, v.r, touch(e.left), touch(e.right)};
   }
 
   void trace_chains() {
@@ -437,6 +549,10 @@ class Builder {
     }
     edge.to = nodes_[node].vertex;
     if (edge.from < 0) edge.to = -1;  // a closed loop with no vertex
+    trim_past_junction(edge, edge.from, false);
+    trim_past_junction(edge, edge.to, true);
+    touch_from_neighbour(edge, edge.from, false);
+    touch_from_neighbour(edge, edge.to, true);
     orient_touches(edge);
     const int id = static_cast<int>(axis_.edges.size());
     if (edge.from >= 0) axis_.vertices[edge.from].edges.push_back(id);
@@ -456,6 +572,34 @@ class Builder {
     edge.points.push_back(nodes_[to].vertex >= 0 ? end_point(nodes_[to].vertex, e) : medial_point(e, b));
   }
 
+  // The discretised junction lies a little off the exact one, so the first
+  // points of an edge may lie just beyond it, where a third place of the
+  // junction is nearer than their two: those points are not medial, drop them.
+  void trim_past_junction(MedialEdge& edge, int vertex, bool at_end) const {
+    if (vertex < 0 || axis_.vertices[vertex].kind != MedialVertexKind::Junction) return;
+    const MedialVertex& junction = axis_.vertices[vertex];
+    auto& pts = edge.points;
+    while (pts.size() > 2) {
+      const MedialPoint& q = at_end ? pts[pts.size() - 2] : pts[1];
+      bool beyond = false;
+      for (const BoundaryPlace& t : junction.touches) {
+        beyond |= distance(nearest_on_run(index_, t, q.p).point, q.p) < q.r * (1 - 1e-12);
+      }
+      if (!beyond) break;
+      pts.erase(at_end ? pts.end() - 2 : pts.begin() + 1);
+    }
+  }
+
+  // At an arc's centre every point of the arc is equally near, so a finite
+  // contact end touches what its neighbouring point touches, seen from there.
+  void touch_from_neighbour(MedialEdge& edge, int vertex, bool at_end) const {
+    if (vertex < 0 || axis_.vertices[vertex].kind != MedialVertexKind::FiniteContact || edge.points.size() < 2) return;
+    MedialPoint& end = at_end ? edge.points.back() : edge.points.front();
+    const MedialPoint& next = at_end ? edge.points[edge.points.size() - 2] : edge.points[1];
+    end.left = nearest_on_run(index_, next.left, end.p);
+    end.right = nearest_on_run(index_, next.right, end.p);
+  }
+
   // Names each point's touching places left and right of the direction of travel.
   static void orient_touches(MedialEdge& edge) {
     const auto& pts = edge.points;
@@ -472,6 +616,7 @@ class Builder {
   std::vector<int> kept_;
   std::vector<int> node_of_;
   std::vector<int> node_vertex_;
+  std::vector<std::vector<int>> voronoi_neighbours_;
   std::vector<Node> nodes_;
   std::map<int, std::pair<int, int>> edge_nodes_;
   MedialAxis axis_;

@@ -20,13 +20,14 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
     return std::clamp(dot(m - line->origin, line->direction), a, b);
   }
   if (const auto* circle = std::get_if<CircleCurve>(&edge.curve)) {
+    // Go from t towards the circle's nearest point by the shorter way round,
+    // stopping at an end of the arc if one comes first: a local search, like
+    // Newton's below, so that each end of an arc keeps its own side.
     const Vec2 d = m - circle->center;
     if (norm(d) < 1e-300) return std::clamp(t, a, b);
-    double u = circle->sense * (std::atan2(d.y, d.x) - circle->start_angle);
-    u = a + std::fmod(std::fmod(u - a, 2 * kPi) + 2 * kPi, 2 * kPi);  // into [a, a + 2pi)
-    if (u <= b) return u;
-    // Outside the arc: the nearer end (angularly the nearer is the nearer in space).
-    return (u - b) < (a + 2 * kPi - u) ? b : a;
+    const double u = circle->sense * (std::atan2(d.y, d.x) - circle->start_angle);
+    const double turn = std::remainder(u - t, 2 * kPi);
+    return std::clamp(std::clamp(t, a, b) + turn, a, b);
   }
   // General curve: Newton's method on (C(t) - m) . C'(t) = 0, kept in range.
   t = std::clamp(t, a, b);
@@ -53,26 +54,55 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
 
 BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
   for (const Loop& loop : face.loops) corner_.emplace_back(loop.edges.size(), false);
-  for (const Corner& c : face.corners) corner_[c.loop][c.vertex] = true;
+  reflex_ = corner_;
+  for (const Corner& c : face.corners) {
+    corner_[c.loop][c.vertex] = true;
+    reflex_[c.loop][c.vertex] = c.angle > kPi;
+  }
 }
 
 BoundaryPlace BoundaryIndex::place(int loop, int e, double t) const {
   const BoundaryEdge& edge = face_.loops[loop].edges[e];
   BoundaryPlace p{loop, e, t, -1, evaluate(edge.curve, t).p};
+  // At a corner the place is the snapped vertex (neighbouring curves may end
+  // a file's tolerance apart); elsewhere it is the curve's own point.
   const double tol = 1e-12 * std::max(1.0, std::abs(edge.t_end - edge.t_start));
-  if (std::abs(t - edge.t_start) <= tol) {
+  const int next = (e + 1) % edge_count(loop);
+  if (std::abs(t - edge.t_start) <= tol && is_corner(loop, e)) {
     p.point = edge.start;
-    if (is_corner(loop, e)) p.corner = e;
-  } else if (std::abs(t - edge.t_end) <= tol) {
+    p.corner = e;
+  } else if (std::abs(t - edge.t_end) <= tol && is_corner(loop, next)) {
     p.point = edge.end;
-    const int next = (e + 1) % edge_count(loop);
-    if (is_corner(loop, next)) p.corner = next;
+    p.corner = next;
   }
   return p;
 }
 
-BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m) {
-  if (start.corner >= 0) return start;  // a corner is a place of its own
+namespace {
+
+BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m);
+
+// From a corner the nearest place is the corner itself while m is in the
+// corner's normal wedge, else a point of one of the two edges meeting there,
+// reached by going down the distance from the corner (never a jump to a far
+// part of the edge).
+BoundaryPlace nearest_from_corner(const BoundaryIndex& index, const BoundaryPlace& corner, Vec2 m) {
+  const int count = index.edge_count(corner.loop);
+  const int after = corner.corner, before = (corner.corner + count - 1) % count;
+  BoundaryPlace best = corner;
+  best.corner_itself = true;
+  for (int e : {before, after}) {
+    const BoundaryEdge& edge = index.edge(corner.loop, e);
+    const Vec2 into = e == after ? edge_tangent(edge, edge.t_start) : -1.0 * edge_tangent(edge, edge.t_end);
+    if (dot(m - corner.point, into) <= 0.0) continue;  // moving onto this edge leads away from m
+    BoundaryPlace start{corner.loop, e, e == after ? edge.t_start : edge.t_end, -1, corner.point};
+    const BoundaryPlace found = nearest_from_inside(index, start, m);
+    if (distance(found.point, m) < distance(best.point, m) * (1 - 1e-14)) best = found;
+  }
+  return best;
+}
+
+BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m) {
   int e = start.edge;
   double t = start.t;
   const int count = index.edge_count(start.loop);
@@ -93,6 +123,17 @@ BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& st
     t = nt;
   }
   return index.place(start.loop, e, t);
+}
+
+}  // namespace
+
+BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m) {
+  if (start.corner >= 0 && start.corner_itself) return nearest_from_corner(index, start, m);
+  // An edge's place at a corner searches its own edge again from there.
+  BoundaryPlace from = start;
+  from.corner = -1;
+  const BoundaryPlace found = nearest_from_inside(index, from, m);
+  return found.corner >= 0 && index.is_reflex(found.loop, found.corner) ? nearest_from_corner(index, found, m) : found;
 }
 
 bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance) {

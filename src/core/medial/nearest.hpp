@@ -16,6 +16,10 @@ struct BoundaryPlace {
   double t = 0.0;
   int corner = -1;
   Vec2 point;
+  // The place stands for the corner vertex itself (not for an edge whose
+  // nearest point happens to be its end), so a search from it may go on
+  // along either edge meeting there.
+  bool corner_itself = false;
 };
 
 // The face with, per loop vertex, whether it is a corner (not a tangent join).
@@ -24,6 +28,7 @@ class BoundaryIndex {
   explicit BoundaryIndex(const FaceModel& face);
   const FaceModel& face() const { return face_; }
   bool is_corner(int loop, int vertex) const { return corner_[loop][vertex]; }
+  bool is_reflex(int loop, int vertex) const { return reflex_[loop][vertex]; }
   const BoundaryEdge& edge(int loop, int e) const { return face_.loops[loop].edges[e]; }
   int edge_count(int loop) const { return static_cast<int>(face_.loops[loop].edges.size()); }
   BoundaryPlace place(int loop, int edge, double t) const;  // fills corner and point
@@ -31,10 +36,14 @@ class BoundaryIndex {
  private:
   const FaceModel& face_;
   std::vector<std::vector<bool>> corner_;
+  std::vector<std::vector<bool>> reflex_;  // corners whose interior angle exceeds pi
 };
 
 // Nearest point to m on the smooth run of boundary through `start`, found by
-// Newton's method from start.t and carried across tangent joins.
+// Newton's method from start.t and carried across tangent joins. It goes on
+// past a reflex corner, where the nearest point moves on without a jump, but
+// stops at a convex one, where it jumps (that jump is the corner's flare);
+// from a place that is a corner itself it may leave along either edge.
 BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m);
 
 // True if a and b are the same point of one smooth run (within tolerance).

@@ -11,6 +11,12 @@ namespace mm {
 namespace {
 
 namespace bp = boost::polygon;
+
+// Chords may turn by this much: the diagram only has to get the topology
+// right (the exact curves give the geometry), and Boost.Polygon's time grows
+// with the number of chords.
+constexpr double kMaxChordTurn = 30.0 * kPi / 180.0;
+// Largest nudge of a discretisation point off its curve, relative to the face size.
 using IntPoint = bp::point_data<int>;
 using IntSegment = bp::segment_data<int>;
 
@@ -53,6 +59,34 @@ bool material_side(const VoronoiGraph& g, const Site& site, Vec2 q) {
   return cross(a, d) >= slack && cross(b, d) >= slack;
 }
 
+// Chord parameters of an edge for the diagram. At a corner the end chords
+// are cut short until they follow the curve's tangent to within a quarter of
+// the corner's deviation from a straight angle, so that a nearly flat convex
+// corner stays convex in the polygon (and keeps its flare) and a nearly flat
+// reflex one stays reflex.
+std::vector<double> chord_parameters(const FaceModel& face, int loop, int edge, const std::vector<double>& corner_slack,
+                                     double chord_tolerance) {
+  const BoundaryEdge& e = face.loops[loop].edges[edge];
+  std::vector<double> params = sample_edge_parameters(e, chord_tolerance, kMaxChordTurn);
+  if (curve_type(e.curve) == CurveType::Line) return params;
+  const int count = static_cast<int>(face.loops[loop].edges.size());
+  const auto chord_angle = [&](double t_end, double t_other) {
+    const Vec2 tangent = edge_tangent(e, t_end);
+    const Vec2 chord = evaluate(e.curve, t_other).p - evaluate(e.curve, t_end).p;
+    return std::abs(signed_angle(t_end == e.t_start ? tangent : -1.0 * tangent, chord));
+  };
+  const double start_limit = corner_slack[edge], end_limit = corner_slack[(edge + 1) % count];
+  for (int i = 0; i < 40 && start_limit > 0 && chord_angle(params[0], params[1]) > start_limit; ++i) {
+    params.insert(params.begin() + 1, 0.5 * (params[0] + params[1]));
+  }
+  for (int i = 0; i < 40 && end_limit > 0; ++i) {
+    const std::size_t n = params.size();
+    if (chord_angle(params[n - 1], params[n - 2]) <= end_limit) break;
+    params.insert(params.end() - 1, 0.5 * (params[n - 2] + params[n - 1]));
+  }
+  return params;
+}
+
 }  // namespace
 
 Vec2 site_point(const VoronoiGraph& graph, const Site& site, Vec2 near) {
@@ -69,12 +103,18 @@ VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_toleranc
   const Box box = bounding_box(face);
   IntegerGrid grid{box.min, std::ldexp(1.0, 29) / std::max(box.max.x - box.min.x, box.max.y - box.min.y)};
 
+  // Per loop vertex: how far a chord there may stray from the tangent (0: no limit).
+  std::vector<std::vector<double>> corner_slack;
+  for (const Loop& loop : face.loops) corner_slack.emplace_back(loop.edges.size(), 0.0);
+  for (const Corner& c : face.corners) corner_slack[c.loop][c.vertex] = 0.25 * std::abs(kPi - c.angle);
+
   std::vector<IntSegment> input;
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     const std::size_t first = graph.segments.size();
     const auto& edges = face.loops[li].edges;
     for (std::size_t ei = 0; ei < edges.size(); ++ei) {
-      const std::vector<double> params = sample_edge_parameters(edges[ei], chord_tolerance);
+      const std::vector<double> params =
+          chord_parameters(face, static_cast<int>(li), static_cast<int>(ei), corner_slack[li], chord_tolerance);
       std::vector<Vec2> pts;
       for (double t : params) pts.push_back(evaluate(edges[ei].curve, t).p);
       pts.front() = edges[ei].start;  // snapped vertices: neighbouring edges share them exactly
