@@ -51,6 +51,13 @@ bool BoundaryProbe::inside(Vec2 p) const {
   return in;
 }
 
+std::vector<const MedialVertex*> of_kind(const MedialAxis& axis, MedialVertexKind kind) {
+  std::vector<const MedialVertex*> result;
+  for (const auto& v : axis.vertices)
+    if (v.kind == kind) result.push_back(&v);
+  return result;
+}
+
 ::testing::AssertionResult medial_axis_is_valid(const FaceModel& face, const MedialAxis& axis, double tolerance) {
   // No point can be more exact than the boundary: add the file's own tolerance
   // (a real part may leave gaps of that size between its edges).

@@ -25,6 +25,9 @@ class BoundaryProbe {
   std::vector<std::vector<std::pair<BoundaryPlace, Vec2>>> loops_;  // sample places and points
 };
 
+// The medial vertices of one kind.
+std::vector<const MedialVertex*> of_kind(const MedialAxis& axis, MedialVertexKind kind);
+
 // Every medial point (vertices and edge points) lies inside the face at
 // distance r from the boundary, its touching points are at distance r, no
 // boundary point is closer; flares sit on convex corners; the axis is one

@@ -5,24 +5,14 @@
 #include <cmath>
 
 #include "boundary/face_model.hpp"
+#include "face_builders.hpp"
 
 namespace mm {
 namespace {
 
-BoundaryEdge line(Vec2 a, Vec2 b) {
-  const double length = distance(a, b);
-  return BoundaryEdge{LineCurve{a, (b - a) / length}, 0.0, length, 0, {}, {}};
-}
-
-std::vector<BoundaryEdge> polygon(const std::vector<Vec2>& pts) {
-  std::vector<BoundaryEdge> edges;
-  for (std::size_t i = 0; i < pts.size(); ++i) edges.push_back(line(pts[i], pts[(i + 1) % pts.size()]));
-  return edges;
-}
-
-BoundaryEdge full_circle(Vec2 center, double radius, int sense) {
-  return BoundaryEdge{CircleCurve{center, radius, 0.0, sense}, 0.0, 2 * kPi, 0, {}, {}};
-}
+using test::full_circle;
+using test::line;
+using test::polygon;
 
 RawFace raw(std::vector<std::vector<BoundaryEdge>> loops) {
   RawFace face;

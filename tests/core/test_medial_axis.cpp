@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "face_builders.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
 #include "svg/svg_writer.hpp"
@@ -12,20 +13,9 @@
 namespace mm {
 namespace {
 
-BoundaryEdge line(Vec2 a, Vec2 b) {
-  const double length = distance(a, b);
-  return BoundaryEdge{LineCurve{a, (b - a) / length}, 0.0, length, 0, {}, {}};
-}
-
-std::vector<BoundaryEdge> polygon(const std::vector<Vec2>& pts) {
-  std::vector<BoundaryEdge> edges;
-  for (std::size_t i = 0; i < pts.size(); ++i) edges.push_back(line(pts[i], pts[(i + 1) % pts.size()]));
-  return edges;
-}
-
-BoundaryEdge circle(Vec2 center, double radius, int sense) {
-  return BoundaryEdge{CircleCurve{center, radius, 0.0, sense}, 0.0, 2 * kPi, 0, {}, {}};
-}
+using test::full_circle;
+using test::line;
+using test::polygon;
 
 // Circular arc from a to b bulging by `bulge` to the right of a->b (outwards
 // for a counter-clockwise loop); a negative bulge goes inwards.
@@ -53,12 +43,7 @@ FaceModel face(std::vector<std::vector<BoundaryEdge>> loops, const std::string& 
   return build_face_model(raw);
 }
 
-std::vector<const MedialVertex*> of_kind(const MedialAxis& axis, MedialVertexKind kind) {
-  std::vector<const MedialVertex*> result;
-  for (const auto& v : axis.vertices)
-    if (v.kind == kind) result.push_back(&v);
-  return result;
-}
+using test::of_kind;
 
 TEST(MedialAxis, Rectangle4x1) {
   const FaceModel f = face({polygon({{0, 0}, {4, 0}, {4, 1}, {0, 1}})});
@@ -87,7 +72,7 @@ TEST(MedialAxis, SquareHasOneJunctionAtItsCentre) {
 }
 
 TEST(MedialAxis, CircleIsOneFiniteContactVertex) {
-  const FaceModel f = face({{circle({0.3, -0.2}, 1.0, 1)}});
+  const FaceModel f = face({{full_circle({0.3, -0.2}, 1.0, 1)}});
   const MedialAxis axis = compute_medial_axis(f);
   ASSERT_EQ(axis.vertices.size(), 1u);
   EXPECT_TRUE(axis.edges.empty());
@@ -138,7 +123,7 @@ TEST(MedialAxis, EllipseSegmentEndsAtCurvatureContacts) {
 }
 
 TEST(MedialAxis, AnnulusIsAClosedLoop) {
-  const FaceModel f = face({{circle({0, 0}, 2.0, 1)}, {circle({0, 0}, 1.0, -1)}});
+  const FaceModel f = face({{full_circle({0, 0}, 2.0, 1)}, {full_circle({0, 0}, 1.0, -1)}});
   const MedialAxis axis = compute_medial_axis(f);
   EXPECT_TRUE(axis.vertices.empty());
   ASSERT_EQ(axis.edges.size(), 1u);
@@ -213,7 +198,7 @@ FaceModel random_face(std::mt19937& rng, int number) {
   const int holes = static_cast<int>(unit(rng) * 3);
   for (int h = 0; h < holes; ++h) {
     const Vec2 c{(h == 0 ? -0.22 : 0.22) + 0.05 * (unit(rng) - 0.5), 0.1 * (unit(rng) - 0.5)};
-    loops.push_back({circle(c, 0.05 + 0.1 * unit(rng), -1)});
+    loops.push_back({full_circle(c, 0.05 + 0.1 * unit(rng), -1)});
   }
   return face(loops, "random face " + std::to_string(number));
 }

@@ -16,12 +16,7 @@ FaceModel reference(const std::string& name) {
   return read_face_models(test::shared_dir() + "/geometry/" + name + ".brep", {}).front();
 }
 
-std::vector<const MedialVertex*> of_kind(const MedialAxis& axis, MedialVertexKind kind) {
-  std::vector<const MedialVertex*> result;
-  for (const auto& v : axis.vertices)
-    if (v.kind == kind) result.push_back(&v);
-  return result;
-}
+using test::of_kind;
 
 TEST(MedialReference, EveryReferenceAndRealFaceHasAValidAxis) {
   for (const char* folder : {"/geometry", "/realcad/faces"}) {

@@ -1,6 +1,7 @@
 #include "test_support.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepTools.hxx>
@@ -77,7 +78,10 @@ double discretised_area(const TopoDS_Face& face, int points_per_edge) {
 }
 
 CliResult run_cli(const std::string& arguments) {
-  const std::string err_path = scratch_dir() + "/cli_stderr.txt";
+  // One file per process and call: CTest runs tests in parallel processes.
+  static int calls = 0;
+  const std::string err_path =
+      scratch_dir() + "/cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
   const std::string command = std::string(MEDIALMESH_CLI) + " " + arguments + " 2>" + err_path;
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
@@ -91,6 +95,7 @@ CliResult run_cli(const std::string& arguments) {
   std::stringstream text;
   text << err.rdbuf();
   result.err = text.str();
+  std::remove(err_path.c_str());
   return result;
 }
 
