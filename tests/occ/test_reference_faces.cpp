@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <BRepBuilderAPI_Transform.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <algorithm>
@@ -227,6 +229,23 @@ TEST(StepInput, FaceOfAStepFileMatchesItsBrepExtract) {
   const auto both = read_face_models(step, {23, 50});
   ASSERT_EQ(both.size(), 2u);
   EXPECT_NEAR(both[0].area, model_of(shared_dir() + "/realcad/faces/trimesh_featuretype_23.brep").area, 1e-6);
+}
+
+TEST(IgesInput, FaceWrittenAsIgesReadsBack) {
+  // OCC's own IGES writer makes the file; reading it must give the same model.
+  const std::string brep = shared_dir() + "/geometry/plate_with_hole.brep";
+  const std::string iges = test::scratch_dir() + "/plate_with_hole.igs";
+  IGESControl_Controller::Init();
+  IGESControl_Writer writer("MM", /*brep mode=*/1);
+  writer.AddShape(read_shape(brep));
+  writer.ComputeModel();
+  ASSERT_TRUE(writer.Write(iges.c_str()));
+  const FaceModel from_iges = read_face_models(iges, {}).front();
+  const FaceModel from_brep = model_of(brep);
+  EXPECT_NEAR(from_iges.area, from_brep.area, 1e-9 * from_brep.area);
+  EXPECT_EQ(from_iges.holes(), 1);
+  EXPECT_EQ(nc_counts(from_iges), nc_counts(from_brep));
+  EXPECT_EQ(predicted_sum_k(from_iges), 4);
 }
 
 TEST(StepInput, EveryPlanarFaceOfTheStepFilesReads) {
