@@ -31,7 +31,7 @@ mm::FaceModel plate_with_holes(int holes) {
 
 void BM_MedialAxisOfPlate(benchmark::State& state) {
   const mm::FaceModel face = plate_with_holes(static_cast<int>(state.range(0)));
-  const std::size_t chords = mm::interior_voronoi_graph(face, 1e-3 * face.size).segments.size();
+  const std::size_t chords = mm::interior_voronoi_graph(face, 1e-3 * face.size, 30.0 * mm::kPi / 180.0).segments.size();
   for (auto _ : state) benchmark::DoNotOptimize(mm::compute_medial_axis(face));
   state.counters["chords"] = static_cast<double>(chords);
   state.SetComplexityN(static_cast<int64_t>(chords));

@@ -7,14 +7,21 @@
 #include <numeric>
 #include <optional>
 
+#include "medial/nearest_boundary.hpp"
 #include "medial/voronoi_graph.hpp"
 
 namespace mm {
 namespace {
 
-// The discretisation only has to get the topology right: chords within this
-// fraction of the face size (and 15 degrees of turning) of the curves.
+// The discretisation only has to get the topology right (the exact curves
+// give the geometry), and Boost.Polygon's time grows with the number of
+// chords: chords within this fraction of the face size of the curves,
+// turning by at most kMaxChordTurn. Where the result fails its own check,
+// the axis is built again with chords finer by kRefinement, at most twice.
 constexpr double kChordTolerance = 1e-3;
+constexpr double kMaxChordTurn = 30.0 * kPi / 180.0;
+constexpr double kRefinement = 4.0;
+constexpr int kMaxRefinements = 2;
 // Two touching points closer than this (relative to the face size) are one:
 // an edge whose two exact touching points coincide is an artefact of the
 // discretisation (the bisector of two chords of one smooth curve).
@@ -34,8 +41,12 @@ struct UnionFind {
 
 class Builder {
  public:
-  explicit Builder(const FaceModel& face)
-      : face_(face), index_(face), graph_(interior_voronoi_graph(face, kChordTolerance * face.size)) {}
+  // fineness 1 for the normal chords, larger for finer ones.
+  Builder(const FaceModel& face, double fineness)
+      : face_(face),
+        index_(face),
+        chord_tolerance_(kChordTolerance * face.size / fineness),
+        graph_(interior_voronoi_graph(face, chord_tolerance_, kMaxChordTurn / fineness)) {}
 
   MedialAxis build() {
     index_voronoi_edges();
@@ -178,7 +189,7 @@ class Builder {
       const double u = std::clamp(dot(c - s.p0, d) / dot(d, d), 0.0, 1.0);
       // The curve strays from its chord by up to the chord tolerance (either
       // side): near enough, ask the exact curve.
-      if (distance(c, s.p0 + u * d) < r + 2 * kChordTolerance * size()) {
+      if (distance(c, s.p0 + u * d) < r + 2 * chord_tolerance_) {
         const BoundaryPlace near = nearest_on_run(index_, index_.place(s.loop, s.edge, s.t0 + u * (s.t1 - s.t0)), c);
         if (distance(c, near.point) < r * (1 - 1e-9)) return false;
       }
@@ -612,6 +623,7 @@ class Builder {
 
   const FaceModel& face_;
   BoundaryIndex index_;
+  double chord_tolerance_;
   VoronoiGraph graph_;
   std::vector<int> kept_;
   std::vector<int> node_of_;
@@ -640,8 +652,30 @@ const char* medial_vertex_kind_name(MedialVertexKind kind) {
   return "junction";
 }
 
+double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
+  const BoundaryIndex index(face);
+  const NearestBoundary boundary(index);
+  double worst = 0.0;
+  const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(boundary.nearest(p).point, p)); };
+  for (const MedialVertex& v : axis.vertices) check(v.p, v.r);
+  for (const MedialEdge& e : axis.edges) {
+    for (const MedialPoint& p : e.points) check(p.p, p.r);
+  }
+  return worst;
+}
+
 MedialAxis compute_medial_axis(const FaceModel& face) {
-  return Builder(face).build();
+  const double tolerance = 1e-7 * face.size + face.tolerance;
+  MedialAxis best = Builder(face, 1.0).build();
+  double best_violation = medial_axis_violation(face, best);
+  double fineness = 1.0;
+  for (int i = 0; i < kMaxRefinements && best_violation > tolerance; ++i) {
+    fineness *= kRefinement;
+    MedialAxis finer = Builder(face, fineness).build();
+    const double violation = medial_axis_violation(face, finer);
+    if (violation < best_violation) best = std::move(finer), best_violation = violation;
+  }
+  return best;
 }
 
 }  // namespace mm

@@ -51,6 +51,15 @@ struct MedialAxis {
   std::vector<MedialEdge> edges;
 };
 
+// Builds the axis from a Voronoi diagram of chords of the boundary; if a
+// medial disc of the result holds boundary (by more than 1e-7 of the face
+// size plus its tolerance: the chords misled the topology near a nearly
+// degenerate spot), builds it again from finer chords, at most twice, and
+// keeps the best.
 MedialAxis compute_medial_axis(const FaceModel& face);
+
+// How far the boundary reaches into the worst medial disc (vertex or edge
+// point): 0 or less for an exact axis.
+double medial_axis_violation(const FaceModel& face, const MedialAxis& axis);
 
 }  // namespace mm

@@ -14,11 +14,6 @@ namespace {
 
 namespace bp = boost::polygon;
 
-// Chords may turn by this much: the diagram only has to get the topology
-// right (the exact curves give the geometry), and Boost.Polygon's time grows
-// with the number of chords.
-constexpr double kMaxChordTurn = 30.0 * kPi / 180.0;
-constexpr double kMaxConcaveChordTurn = 45.0 * kPi / 180.0;
 // Largest nudge of a discretisation point off its curve, relative to the face size.
 using IntPoint = bp::point_data<int>;
 using IntSegment = bp::segment_data<int>;
@@ -68,17 +63,17 @@ bool material_side(const VoronoiGraph& g, const Site& site, Vec2 q) {
 // corner stays convex in the polygon (and keeps its flare) and a nearly flat
 // reflex one stays reflex.
 std::vector<double> chord_parameters(const FaceModel& face, int loop, int edge, const std::vector<double>& corner_slack,
-                                     double chord_tolerance) {
+                                     double chord_tolerance, double max_turn) {
   const BoundaryEdge& e = face.loops[loop].edges[edge];
   // A hole bounded by one closed curve curving away from the material (a
   // round bore) gives the diagram a plain fan of bisectors with no join where
   // the pairing could flip, so it can do with coarser chords (three times the
-  // chord tolerance, 45 degrees of turning): fewer chords, a faster diagram.
+  // chord tolerance, half as much turning again): fewer chords, a faster diagram.
   // Holes with fillets and joins keep the fine chords.
   const bool closed_hole = loop > 0 && face.loops[loop].edges.size() == 1;
   const bool concave = closed_hole && curvature(e, 0.5 * (e.t_start + e.t_end)) < 0;
-  std::vector<double> params = concave ? sample_edge_parameters(e, 3 * chord_tolerance, kMaxConcaveChordTurn)
-                                       : sample_edge_parameters(e, chord_tolerance, kMaxChordTurn);
+  std::vector<double> params = concave ? sample_edge_parameters(e, 3 * chord_tolerance, 1.5 * max_turn)
+                                       : sample_edge_parameters(e, chord_tolerance, max_turn);
   if (curve_type(e.curve) == CurveType::Line) return params;
   const int count = static_cast<int>(face.loops[loop].edges.size());
   const auto chord_angle = [&](double t_end, double t_other) {
@@ -109,7 +104,7 @@ Vec2 site_point(const VoronoiGraph& graph, const Site& site, Vec2 near) {
   return s.p0 + u * d;
 }
 
-VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_tolerance) {
+VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_tolerance, double max_turn) {
   VoronoiGraph graph;
   const Box box = bounding_box(face);
   IntegerGrid grid{box.min, std::ldexp(1.0, 29) / std::max(box.max.x - box.min.x, box.max.y - box.min.y)};
@@ -124,8 +119,8 @@ VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_toleranc
     const std::size_t first = graph.segments.size();
     const auto& edges = face.loops[li].edges;
     for (std::size_t ei = 0; ei < edges.size(); ++ei) {
-      const std::vector<double> params =
-          chord_parameters(face, static_cast<int>(li), static_cast<int>(ei), corner_slack[li], chord_tolerance);
+      const std::vector<double> params = chord_parameters(face, static_cast<int>(li), static_cast<int>(ei),
+                                                          corner_slack[li], chord_tolerance, max_turn);
       std::vector<Vec2> pts;
       for (double t : params) pts.push_back(evaluate(edges[ei].curve, t).p);
       pts.front() = edges[ei].start;  // snapped vertices: neighbouring edges share them exactly

@@ -42,9 +42,10 @@ struct VoronoiGraph {
   std::vector<VoronoiEdge> edges;
 };
 
-// Discretises the boundary (chords within chord_tolerance of the curves) and
-// keeps the finite primary Voronoi edges that lie inside the face.
-VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_tolerance);
+// Discretises the boundary (chords within chord_tolerance of the curves,
+// turning by at most max_turn radians) and keeps the finite primary Voronoi
+// edges that lie inside the face.
+VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_tolerance, double max_turn);
 
 // Position of a site's point (for point sites) or nearest point (segments).
 Vec2 site_point(const VoronoiGraph& graph, const Site& site, Vec2 near);

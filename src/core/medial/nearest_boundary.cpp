@@ -1,0 +1,61 @@
+#include "medial/nearest_boundary.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <iterator>
+#include <utility>
+#include <vector>
+
+namespace mm {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using RPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+
+// Points every 1e-4 of the face size (chordally) and at most 1e-2 apart
+// along straight stretches, each with its boundary place.
+struct NearestBoundary::Samples {
+  bgi::rtree<std::pair<RPoint, BoundaryPlace>, bgi::quadratic<16>> tree;
+};
+
+NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), samples_(new Samples) {
+  const FaceModel& face = index.face();
+  const double spacing = 1e-2 * face.size;
+  std::vector<std::pair<RPoint, BoundaryPlace>> points;
+  for (std::size_t li = 0; li < face.loops.size(); ++li) {
+    for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
+      const BoundaryEdge& e = face.loops[li].edges[ei];
+      const std::vector<double> params = sample_edge_parameters(e, 1e-4 * face.size);
+      for (std::size_t k = 0; k + 1 < params.size(); ++k) {
+        const Vec2 a = evaluate(e.curve, params[k]).p, b = evaluate(e.curve, params[k + 1]).p;
+        const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing)));
+        for (int s = 0; s < steps; ++s) {
+          const double t = params[k] + (params[k + 1] - params[k]) * s / steps;
+          const BoundaryPlace place = index.place(static_cast<int>(li), static_cast<int>(ei), t);
+          points.push_back({RPoint(place.point.x, place.point.y), place});
+        }
+      }
+    }
+  }
+  samples_->tree = decltype(samples_->tree)(points.begin(), points.end());
+}
+
+NearestBoundary::~NearestBoundary() = default;
+
+BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
+  std::vector<std::pair<RPoint, BoundaryPlace>> found;
+  samples_->tree.query(bgi::nearest(RPoint(p.x, p.y), 6), std::back_inserter(found));
+  BoundaryPlace best;
+  double best_distance = 1e300;
+  for (const auto& [point, place] : found) {
+    for (const BoundaryPlace& candidate : {place, nearest_on_run(index_, place, p)}) {
+      const double d = distance(candidate.point, p);
+      if (d < best_distance) best = candidate, best_distance = d;
+    }
+  }
+  return best;
+}
+
+}  // namespace mm
