@@ -30,6 +30,24 @@ def boundary_model(face, name="face"):
     return _medialmesh.face_model(face.exportBrepToString(), name)
 
 
+def medial_axis(face, name="face"):
+    """Return the medial axis of a planar face as a dict.
+
+    {'vertices': [{'x', 'y', 'r', 'kind'}], 'edges': [{'from', 'to', 'polyline'}],
+    'frame': {...}}: coordinates in the face's 2-D frame; to_3d() maps them back.
+    kind is 'junction', 'flare', 'finite_contact' or 'curvature_contact'.
+    Raises InputError for faces that cannot be meshed.
+    """
+    if not hasattr(face, "exportBrepToString"):
+        raise InputError(f"{name}: expected a Part.Face, got {type(face).__name__}")
+    return _medialmesh.medial_axis(face.exportBrepToString(), name)
+
+
+def to_3d(frame, x, y):
+    """Map a point of a face's 2-D frame (from boundary_model or medial_axis) to 3-D."""
+    return tuple(o + x * a + y * b for o, a, b in zip(frame["origin"], frame["x_dir"], frame["y_dir"]))
+
+
 def module_path():
     """Return the file the compiled module _medialmesh was loaded from."""
     return _medialmesh.__file__

@@ -4,18 +4,24 @@
 
 #include "occ/occ_reader.hpp"
 #include "report/face_report.hpp"
+#include "report/medial_report.hpp"
 
 namespace py = pybind11;
 
 namespace {
 
+nlohmann::json frame_json(const mm::Frame& frame) {
+  return {{"origin", frame.origin}, {"x_dir", frame.x_dir}, {"y_dir", frame.y_dir}, {"normal", frame.normal}};
+}
+
+py::object to_python(const nlohmann::json& json) {
+  return py::module_::import("json").attr("loads")(json.dump());
+}
+
 // The JSON report plus what a Python caller needs to draw or map back to 3-D.
 py::object face_dict(const mm::FaceModel& face) {
   nlohmann::json report = mm::face_report_json(face);
-  report["frame"] = {{"origin", face.frame.origin},
-                     {"x_dir", face.frame.x_dir},
-                     {"y_dir", face.frame.y_dir},
-                     {"normal", face.frame.normal}};
+  report["frame"] = frame_json(face.frame);
   nlohmann::json loops = nlohmann::json::array();
   for (const mm::Loop& loop : face.loops) {
     nlohmann::json points = nlohmann::json::array();
@@ -23,13 +29,13 @@ py::object face_dict(const mm::FaceModel& face) {
     loops.push_back(points);
   }
   report["loops"] = loops;
-  return py::module_::import("json").attr("loads")(report.dump());
+  return to_python(report);
 }
 
 }  // namespace
 
 PYBIND11_MODULE(_medialmesh, m) {
-  m.doc() = "MedialMesh core: boundary model of planar faces";
+  m.doc() = "MedialMesh core: boundary model and medial axis of planar faces";
   py::register_exception<mm::InputError>(m, "InputError", PyExc_ValueError);
 
   m.def(
@@ -39,6 +45,18 @@ PYBIND11_MODULE(_medialmesh, m) {
       },
       py::arg("brep"), py::arg("name") = "face",
       "Boundary model of one planar face given as BREP text (Face.exportBrepToString()).");
+
+  m.def(
+      "medial_axis",
+      [](const std::string& brep, const std::string& name) {
+        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
+        nlohmann::json report = mm::medial_report_json(mm::compute_medial_axis(face));
+        report["frame"] = frame_json(face.frame);
+        return to_python(report);
+      },
+      py::arg("brep"), py::arg("name") = "face",
+      "Medial axis of one planar face given as BREP text: {'vertices': [{'x','y','r','kind'}], "
+      "'edges': [{'from','to','polyline': [[x, y, r], ...]}], 'frame': {...}} in the face's 2-D frame.");
 
   m.def(
       "read_faces",

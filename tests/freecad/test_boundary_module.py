@@ -11,6 +11,7 @@ import unittest
 
 import numpy
 
+import FreeCAD
 import Part
 
 import MedialMesh
@@ -130,3 +131,35 @@ class TestBadInput(unittest.TestCase):
     def test_not_a_shape(self):
         with self.assertRaises(MedialMesh.InputError):
             MedialMesh.boundary_model("not a face")
+
+
+class TestMedialAxis(unittest.TestCase):
+    """The medial axis through the package, on faces FreeCAD made and moved."""
+
+    def test_plate_with_hole_in_a_moved_placement(self):
+        path = dict(reference_faces())["plate_with_hole"]
+        face = Part.read(path).Faces[0]
+        moved = face.copy()
+        moved.Placement = FreeCAD.Placement(FreeCAD.Vector(5, -3, 12), FreeCAD.Rotation(30, 40, 50))
+        for candidate, name in ((face, "plate"), (moved, "moved plate")):
+            axis = MedialMesh.medial_axis(candidate, name)
+            junctions = [v for v in axis["vertices"] if v["kind"] == "junction"]
+            self.assertEqual(len(junctions), 4)
+            self.assertEqual(sum(v["kind"] == "flare" for v in axis["vertices"]), 4)
+            for v in junctions:
+                self.assertAlmostEqual(v["r"], 2 - 3 / (1 + 2 ** 0.5), places=9)
+                # Mapped back to 3-D, every junction lies on the face itself.
+                point = FreeCAD.Vector(*MedialMesh.to_3d(axis["frame"], v["x"], v["y"]))
+                self.assertLess(candidate.distToShape(Part.Vertex(point))[0], 1e-9)
+
+    def test_circle_is_one_finite_contact_vertex(self):
+        face = Part.Face(Part.Wire(Part.makeCircle(2.5, FreeCAD.Vector(1, 2, 0))))
+        axis = MedialMesh.medial_axis(face)
+        self.assertEqual(len(axis["vertices"]), 1)
+        self.assertEqual(axis["vertices"][0]["kind"], "finite_contact")
+        self.assertAlmostEqual(axis["vertices"][0]["r"], 2.5, places=12)
+        self.assertEqual(axis["edges"], [])
+
+    def test_bad_face_raises_input_error(self):
+        with self.assertRaises(MedialMesh.InputError):
+            MedialMesh.medial_axis(Part.makeCylinder(1, 2).Faces[0], "cylinder side")
