@@ -38,8 +38,9 @@ std::map<int, int> nc_counts(const FaceModel& face) {
 
 std::map<std::string, int> edge_types(const FaceModel& face) {
   std::map<std::string, int> counts;
-  for (const Loop& loop : face.loops)
+  for (const Loop& loop : face.loops) {
     for (const BoundaryEdge& e : loop.edges) ++counts[curve_type_name(curve_type(e.curve))];
+  }
   return counts;
 }
 
