@@ -41,10 +41,6 @@ std::string write(const TopoDS_Shape& shape, const std::string& name) {
   return path;
 }
 
-TopoDS_Edge segment(gp_Pnt a, gp_Pnt b) {
-  return BRepBuilderAPI_MakeEdge(a, b).Edge();
-}
-
 // A face on the XY plane bounded by the given wire, built without OCC's checks.
 TopoDS_Shape unchecked_face(const TopoDS_Wire& wire) {
   BRep_Builder builder;

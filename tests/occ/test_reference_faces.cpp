@@ -92,7 +92,9 @@ TEST(ReferenceFaces, MatchTheirShapes) {
     const FaceModel face = model_of(path);
     const double oracle = test::discretised_area(first_face(read_shape(path)), 20000);
     EXPECT_NEAR(face.area, oracle, 1e-7 * face.area);
-    if (e.area > 0) EXPECT_NEAR(face.area, e.area, 1e-12 * e.area);
+    if (e.area > 0) {
+      EXPECT_NEAR(face.area, e.area, 1e-12 * e.area);
+    }
     EXPECT_EQ(face.holes(), e.holes);
     EXPECT_EQ(face.euler(), 1 - e.holes);
     EXPECT_EQ(edge_types(face), e.edges);
