@@ -205,11 +205,10 @@ FaceModel random_face(std::mt19937& rng, int number) {
 
 // The medial axis of every random face should be one connected graph with a
 // cycle per hole and every point within 1e-6 of the diagonal of the exact
-// axis. Two faces of this sequence do not yet: 354 gets an extra cycle near
-// a finite contact beside a nearly flat corner, and 721 is off by 1.4e-4 of
-// the diagonal next to a nearly flat reflex corner. The test allows no more
-// than five such faces, so it fails on any regression; each failing face is
-// drawn to random_face_N.svg.
+// axis. One face of this sequence does not yet: 354 gets an extra cycle
+// through a finite contact that two branches run into. The test allows no
+// more than five such faces, so it fails on any regression; each failing
+// face is drawn to random_face_N.svg.
 TEST(MedialAxis, PropertiesHoldOnAThousandRandomFaces) {
   std::mt19937 rng(20261121);
   int checked = 0, rejected = 0;

@@ -506,6 +506,33 @@ class Builder {
     return {b.p, b.r, b.a, b.b};
   }
 
+  // A node inside a medial edge where one touching place gives way to another
+  // (after a ripple branch was pruned there) lies equally far from all three
+  // places; elsewhere it is an ordinary point of the edge's bisector.
+  MedialPoint transition_point(int node, int voronoi_edge) const {
+    const Vec2 p = node_point(node);
+    // Cheap test first: the sites around the node must lie on three boundary edges.
+    std::vector<std::pair<int, int>> edges;
+    for (int e : nodes_[node].edges) {
+      for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right}) {
+        const BoundarySegment& s = graph_.segments[site.segment];
+        if (std::find(edges.begin(), edges.end(), std::make_pair(s.loop, s.edge)) == edges.end()) {
+          edges.emplace_back(s.loop, s.edge);
+        }
+      }
+    }
+    if (edges.size() < 3) return medial_point(voronoi_edge, p);
+    const std::vector<BoundaryPlace> places = touches_at(node, p);
+    if (places.size() == 3) {
+      const Equidistant exact = equidistant(index_, p, places);
+      if (exact.converged && distance(exact.p, p) <= kPointSpacing * size()) {
+        const VoronoiEdge& e = graph_.edges[voronoi_edge];
+        return {exact.p, exact.r, place_of(e.left, exact.p), place_of(e.right, exact.p)};
+      }
+    }
+    return medial_point(voronoi_edge, p);
+  }
+
   // A vertex as the end point of an edge: its exact place, with the feet of the
   // edge's two sites seen from there.
   MedialPoint end_point(int vertex, int voronoi_edge) const {
@@ -580,7 +607,7 @@ class Builder {
       edge.points.push_back(nodes_[from].vertex >= 0 ? end_point(nodes_[from].vertex, e) : medial_point(e, a));
     }
     for (int k = 1; k < pieces; ++k) edge.points.push_back(medial_point(e, a + (double(k) / pieces) * (b - a)));
-    edge.points.push_back(nodes_[to].vertex >= 0 ? end_point(nodes_[to].vertex, e) : medial_point(e, b));
+    edge.points.push_back(nodes_[to].vertex >= 0 ? end_point(nodes_[to].vertex, e) : transition_point(to, e));
   }
 
   // The discretised junction lies a little off the exact one, so the first
