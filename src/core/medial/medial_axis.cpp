@@ -210,14 +210,20 @@ class Builder {
   int finite_contact_for(int node) const {
     const VoronoiEdge& e = graph_.edges[nodes_[node].edges.front()];
     const Vec2 p = node_point(node);
+    // The places the end touches, seen from the centre: a corner stays that
+    // corner (searching on from it could slide onto another arc's range).
+    const BoundaryPlace left_here = place_of(e.left, p), right_here = place_of(e.right, p);
+    const auto seen_from = [&](const BoundaryPlace& here, Vec2 c) {
+      return here.corner >= 0 ? here : nearest_on_run(index_, here, c);
+    };
     int best = -1;
     for (std::size_t i = 0; i < axis_.vertices.size(); ++i) {
       const MedialVertex& v = axis_.vertices[i];
       if (v.kind != MedialVertexKind::FiniteContact || distance(v.p, p) > 3 * v.r) continue;
       if (best >= 0 && distance(v.p, p) >= distance(axis_.vertices[best].p, p)) continue;
       const double tolerance = 1e-9 * size();
-      const double left = distance(v.p, place_of(e.left, v.p).point),
-                   right = distance(v.p, place_of(e.right, v.p).point);
+      const double left = distance(v.p, seen_from(left_here, v.p).point);
+      const double right = distance(v.p, seen_from(right_here, v.p).point);
       if (std::abs(left - v.r) <= tolerance && std::abs(right - v.r) <= tolerance) best = static_cast<int>(i);
     }
     return best;

@@ -14,7 +14,7 @@ namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
 using RPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 
-// Points every 1e-4 of the face size (chordally) and at most 1e-2 apart
+// Points within 1e-3 of the face size of the curves and at most 1e-2 apart
 // along straight stretches, each with its boundary place.
 struct NearestBoundary::Samples {
   bgi::rtree<std::pair<RPoint, BoundaryPlace>, bgi::quadratic<16>> tree;
@@ -27,7 +27,7 @@ NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), sa
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
-      const std::vector<double> params = sample_edge_parameters(e, 1e-4 * face.size);
+      const std::vector<double> params = sample_edge_parameters(e, 1e-3 * face.size);
       for (std::size_t k = 0; k + 1 < params.size(); ++k) {
         const Vec2 a = evaluate(e.curve, params[k]).p, b = evaluate(e.curve, params[k + 1]).p;
         const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing)));
