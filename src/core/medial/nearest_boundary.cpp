@@ -1,5 +1,6 @@
 #include "medial/nearest_boundary.hpp"
 
+#include <algorithm>
 #include <boost/geometry.hpp>
 #include <boost/geometry/geometries/point.hpp>
 #include <boost/geometry/index/rtree.hpp>
@@ -47,13 +48,18 @@ NearestBoundary::~NearestBoundary() = default;
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   std::vector<std::pair<RPoint, BoundaryPlace>> found;
   samples_->tree.query(bgi::nearest(RPoint(p.x, p.y), 6), std::back_inserter(found));
+  // Refine once per edge: the nearest samples mostly lie on one or two edges.
   BoundaryPlace best;
   double best_distance = 1e300;
+  std::vector<std::pair<int, int>> refined;
   for (const auto& [point, place] : found) {
-    for (const BoundaryPlace& candidate : {place, nearest_on_run(index_, place, p)}) {
-      const double d = distance(candidate.point, p);
-      if (d < best_distance) best = candidate, best_distance = d;
-    }
+    const double d = distance(place.point, p);
+    if (d < best_distance) best = place, best_distance = d;
+    const std::pair<int, int> edge{place.loop, place.edge};
+    if (std::find(refined.begin(), refined.end(), edge) != refined.end()) continue;
+    refined.push_back(edge);
+    const BoundaryPlace exact = nearest_on_run(index_, place, p);
+    if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
   }
   return best;
 }

@@ -67,12 +67,13 @@ std::vector<double> chord_parameters(const FaceModel& face, int loop, int edge, 
   const BoundaryEdge& e = face.loops[loop].edges[edge];
   // A hole bounded by one closed curve curving away from the material (a
   // round bore) gives the diagram a plain fan of bisectors with no join where
-  // the pairing could flip, so it can do with coarser chords (three times the
-  // chord tolerance, half as much turning again): fewer chords, a faster diagram.
-  // Holes with fillets and joins keep the fine chords.
+  // the pairing could flip, so it can do with coarser chords (five times the
+  // chord tolerance, twice the turning): fewer chords, a faster diagram. Holes
+  // with fillets and joins keep the fine chords; the axis's self-check
+  // rebuilds from finer chords should a coarse one mislead it.
   const bool closed_hole = loop > 0 && face.loops[loop].edges.size() == 1;
   const bool concave = closed_hole && curvature(e, 0.5 * (e.t_start + e.t_end)) < 0;
-  std::vector<double> params = concave ? sample_edge_parameters(e, 3 * chord_tolerance, 1.5 * max_turn)
+  std::vector<double> params = concave ? sample_edge_parameters(e, 5 * chord_tolerance, 2 * max_turn)
                                        : sample_edge_parameters(e, chord_tolerance, max_turn);
   if (curve_type(e.curve) == CurveType::Line) return params;
   const int count = static_cast<int>(face.loops[loop].edges.size());
