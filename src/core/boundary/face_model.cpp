@@ -353,13 +353,16 @@ std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chor
   return params;
 }
 
-std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) {
-  const std::vector<double> params = sample_edge_parameters(edge, chord_tolerance);
+std::vector<Vec2> edge_points(const BoundaryEdge& edge, const std::vector<double>& params) {
   std::vector<Vec2> points;
   for (double t : params) points.push_back(evaluate_point(edge, t));
-  points.front() = edge.start;  // the snapped vertices, so loops close exactly
+  points.front() = edge.start;
   points.back() = edge.end;
   return points;
+}
+
+std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance) {
+  return edge_points(edge, sample_edge_parameters(edge, chord_tolerance));
 }
 
 std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance) {

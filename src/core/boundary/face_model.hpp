@@ -91,6 +91,9 @@ double edge_length(const BoundaryEdge& edge);
 // Points along the edge, start and end included, with chordal deviation at
 // most chord_tolerance and no more than 15 degrees of turning between points.
 std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance);
+// The points of an edge at the given parameters (t_start first, t_end last),
+// its ends replaced by the snapped vertices so neighbouring edges share them.
+std::vector<Vec2> edge_points(const BoundaryEdge& edge, const std::vector<double>& params);
 // The curve parameters of those points, t_start first and t_end last; the
 // chords turn by at most max_turn radians (15 degrees by default).
 std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance,

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -31,6 +30,13 @@ constexpr double kSamePlace = 1e-6;
 constexpr double kRippleAngle = kPi / 4;
 // Medial polylines get a point at least every this fraction of the face size.
 constexpr double kPointSpacing = 1e-2;
+
+// Adds b unless a place within tolerance of it is there already.
+void add_distinct(std::vector<BoundaryPlace>& places, const BoundaryPlace& b, double tolerance) {
+  for (const auto& q : places)
+    if (same_place(q, b, tolerance)) return;
+  places.push_back(b);
+}
 
 struct UnionFind {
   std::vector<int> parent;
@@ -199,8 +205,7 @@ class Builder {
 
   double medial_angle_at(int voronoi_edge, Vec2 p) const {
     const VoronoiEdge& e = graph_.edges[voronoi_edge];
-    const Vec2 a = place_of(e.left, p).point - p, b = place_of(e.right, p).point - p;
-    return norm(a) > 0 && norm(b) > 0 ? std::abs(signed_angle(a, b)) : 0.0;
+    return medial_angle({p, 0.0, place_of(e.left, p), place_of(e.right, p)});
   }
 
   // The finite-contact vertex the axis ending at this node runs into, or -1:
@@ -277,14 +282,9 @@ class Builder {
   // Distinct exact places touched around a node, from the sites of its edges.
   std::vector<BoundaryPlace> touches_at(int node, Vec2 p) const {
     std::vector<BoundaryPlace> places;
-    const auto add = [&](const BoundaryPlace& b) {
-      for (const auto& q : places)
-        if (same_place(q, b, kSamePlace * size())) return;
-      places.push_back(b);
-    };
     for (int e : nodes_[node].edges) {
-      add(place_of(graph_.edges[e].left, p));
-      add(place_of(graph_.edges[e].right, p));
+      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
+      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
     }
     return places;
   }
@@ -308,12 +308,6 @@ class Builder {
   // pairs of Voronoi vertices that may pair the places up wrongly).
   std::vector<BoundaryPlace> junction_candidates(int node, Vec2 p) const {
     std::vector<BoundaryPlace> places;
-    const auto add = [&](const Site& site) {
-      const BoundaryPlace b = place_of(site, p);
-      for (const auto& q : places)
-        if (same_place(q, b, kSamePlace * size())) return;
-      places.push_back(b);
-    };
     // Voronoi vertices within reach over any interior Voronoi edge, kept or not.
     std::vector<int> nearby{node_vertex_[node]};
     for (std::size_t k = 0; k < nearby.size() && nearby.size() < 64; ++k) {
@@ -326,7 +320,7 @@ class Builder {
       }
     }
     for (int v : nearby) {
-      for (const Site& site : graph_.vertices[v].sites) add(site);
+      for (const Site& site : graph_.vertices[v].sites) add_distinct(places, place_of(site, p), kSamePlace * size());
     }
     return places;
   }
@@ -369,7 +363,6 @@ class Builder {
   }
 
   void make_end(int node, Vec2 p) {
-    const std::vector<BoundaryPlace> touches = touches_at(node, p);
     const double r = graph_.vertices[node_vertex_[node]].r;
     // Flare: the axis runs into a convex corner.
     if (r <= 1e-6 * size()) {
@@ -391,6 +384,7 @@ class Builder {
       return;
     }
     // A curvature contact, snapped to its exact place when there is one.
+    const std::vector<BoundaryPlace> touches = touches_at(node, p);
     MedialVertex fallback;
     fallback.kind = MedialVertexKind::CurvatureContact;
     fallback.p = p;
@@ -685,9 +679,9 @@ const char* medial_vertex_kind_name(MedialVertexKind kind) {
   return "junction";
 }
 
-double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
-  const BoundaryIndex index(face);
-  const NearestBoundary boundary(index);
+namespace {
+
+double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
   double worst = 0.0;
   const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(boundary.nearest(p).point, p)); };
   for (const MedialVertex& v : axis.vertices) check(v.p, v.r);
@@ -697,16 +691,25 @@ double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
   return worst;
 }
 
+}  // namespace
+
+double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
+  const BoundaryIndex index(face);
+  return violation(NearestBoundary(index), axis);
+}
+
 MedialAxis compute_medial_axis(const FaceModel& face) {
   const double tolerance = 1e-7 * face.size + face.tolerance;
+  const BoundaryIndex index(face);
+  const NearestBoundary boundary(index);  // built once for every check below
   MedialAxis best = Builder(face, 1.0).build();
-  double best_violation = medial_axis_violation(face, best);
+  double best_violation = violation(boundary, best);
   double fineness = 1.0;
   for (int i = 0; i < kMaxRefinements && best_violation > tolerance; ++i) {
     fineness *= kRefinement;
     MedialAxis finer = Builder(face, fineness).build();
-    const double violation = medial_axis_violation(face, finer);
-    if (violation < best_violation) best = std::move(finer), best_violation = violation;
+    const double finer_violation = violation(boundary, finer);
+    if (finer_violation < best_violation) best = std::move(finer), best_violation = finer_violation;
   }
   return best;
 }

@@ -122,10 +122,7 @@ VoronoiGraph interior_voronoi_graph(const FaceModel& face, double chord_toleranc
     for (std::size_t ei = 0; ei < edges.size(); ++ei) {
       const std::vector<double> params = chord_parameters(face, static_cast<int>(li), static_cast<int>(ei),
                                                           corner_slack[li], chord_tolerance, max_turn);
-      std::vector<Vec2> pts;
-      for (double t : params) pts.push_back(evaluate(edges[ei].curve, t).p);
-      pts.front() = edges[ei].start;  // snapped vertices: neighbouring edges share them exactly
-      pts.back() = edges[ei].end;
+      const std::vector<Vec2> pts = edge_points(edges[ei], params);
       for (std::size_t k = 0; k + 1 < params.size(); ++k) {
         // Chords share their rounded end points, so a chord shorter than the
         // grid can be dropped without opening the loop.
