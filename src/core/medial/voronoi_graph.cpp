@@ -43,9 +43,9 @@ Site site_of(const bp::voronoi_cell<double>& cell) {
 
 // Is point q (not on the boundary) on the material side of the site? For a
 // segment: left of its line. For a vertex of the discretisation: left of both
-// segments meeting there, within rounding (its Voronoi cell lies in the
-// material only where the boundary turns right, at a reflex vertex, and is a
-// sliver there when the turn is slight).
+// segments meeting there at a convex vertex, left of either at a reflex one,
+// within rounding (a vertex's Voronoi cell lies in the material only where
+// the boundary turns right, and is a sliver there when the turn is slight).
 bool material_side(const VoronoiGraph& g, const Site& site, Vec2 q) {
   const BoundarySegment& s = g.segments[site.segment];
   if (site.part == Site::kSegment) return cross(s.p1 - s.p0, q - s.p0) > 0.0;
@@ -54,6 +54,7 @@ bool material_side(const VoronoiGraph& g, const Site& site, Vec2 q) {
   const Vec2 v = site.part == Site::kStart ? s.p0 : s.p1;
   const Vec2 a = normalized(in.p1 - in.p0), b = normalized(out.p1 - out.p0), d = q - v;
   const double slack = -1e-9 * norm(d);
+  if (cross(a, b) < 0.0) return cross(a, d) >= slack || cross(b, d) >= slack;
   return cross(a, d) >= slack && cross(b, d) >= slack;
 }
 
