@@ -3,12 +3,14 @@
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "occ/occ_reader.hpp"
 #include "report/face_report.hpp"
 #include "report/medial_report.hpp"
+#include "report/singularity_report.hpp"
 #include "svg/svg_writer.hpp"
 
 namespace {
@@ -17,8 +19,11 @@ constexpr const char* kUsage =
     "usage: medialmesh info FILE [--face N]... [--json]\n"
     "       medialmesh svg FILE [--face N] -o OUT.svg\n"
     "       medialmesh medial FILE [--face N] [--json] [--svg OUT.svg]\n"
+    "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
-    "--face takes a number or a comma-separated list (info only).\n";
+    "--face takes a number or a comma-separated list (info only).\n"
+    "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
+    "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n";
 
 struct Options {
   std::string command;
@@ -27,6 +32,7 @@ struct Options {
   bool json = false;
   std::string output;
   std::string svg;
+  std::optional<mm::MergeTolerance> merge;
 };
 
 struct UsageError {
@@ -53,12 +59,24 @@ std::vector<int> parse_face_list(const std::string& text) {
   return faces;
 }
 
+std::optional<double> parse_number(const std::string& text) {
+  std::size_t used = 0;
+  double number = 0.0;
+  try {
+    number = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size()) return std::nullopt;
+  return number;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) throw UsageError{"no command given"};
   o.command = args[0];
-  if (o.command != "info" && o.command != "svg" && o.command != "medial")
+  if (o.command != "info" && o.command != "svg" && o.command != "medial" && o.command != "singularities")
     throw UsageError{"unknown command '" + o.command + "'"};
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -74,6 +92,13 @@ Options parse(int argc, char** argv) {
       o.output = value();
     } else if (a == "--svg") {
       o.svg = value();
+    } else if (a == "--merge" && (i + 1 >= args.size() || !parse_number(args[i + 1]))) {
+      o.merge = mm::MergeTolerance{};
+    } else if (a == "--merge" || a == "--merge-size") {
+      const std::string& text = value();
+      const std::optional<double> number = parse_number(text);
+      if (!number) throw UsageError{a + " needs a number, got '" + text + "'"};
+      o.merge = a == "--merge" ? mm::MergeTolerance{*number, 0.0} : mm::MergeTolerance{0.75, *number};
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError{"unknown option '" + a + "'"};
     } else if (o.file.empty()) {
@@ -86,7 +111,38 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.faces.size() > 1) throw UsageError{o.command + " takes a single --face"};
   if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
+  if (o.merge && o.command != "singularities") throw UsageError{"--merge belongs to the singularities command"};
   return o;
+}
+
+void run_singularities(const Options& o, const mm::FaceModel& face) {
+  const mm::MedialAxis axis = mm::compute_medial_axis(face);
+  const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+  std::vector<mm::SingularityGroup> groups;
+  if (o.merge) groups = mm::merge_singularities(flow.singularities, *o.merge);
+  std::vector<mm::SingularityMark> marks;
+  if (o.merge) {
+    for (const auto& g : groups) marks.push_back({g.p, g.k});
+  } else {
+    for (const auto& s : flow.singularities) marks.push_back({s.p, s.k});
+  }
+  const nlohmann::json report = mm::singularity_report_json(face, flow, o.merge ? &groups : nullptr);
+  if (o.json) {
+    std::cout << report.dump(2) << "\n";
+  } else {
+    std::cout << face.name << ": " << marks.size() << " singularities, sum k = " << report["sum_k"] << " (predicted "
+              << report["predicted_sum_k"] << ")\n";
+    for (const auto& s : report["singularities"]) {
+      std::cout << "  k = " << s["k"] << " at (" << s["x"] << ", " << s["y"] << ") " << s["at"].get<std::string>()
+                << "\n";
+    }
+  }
+  if (!o.svg.empty()) {
+    mm::SvgCanvas canvas(mm::bounding_box(face), 800);
+    mm::draw_face(canvas, face);
+    mm::draw_mesh_flow(canvas, face, flow, marks);
+    canvas.save(o.svg);
+  }
 }
 
 int run(const Options& o) {
@@ -104,6 +160,8 @@ int run(const Options& o) {
     mm::draw_face(canvas, faces.front());
     mm::draw_corners(canvas, faces.front());
     canvas.save(o.output);
+  } else if (o.command == "singularities") {
+    run_singularities(o, faces.front());
   } else {
     const mm::MedialAxis axis = mm::compute_medial_axis(faces.front());
     if (o.json) std::cout << mm::medial_report_json(axis).dump(2) << "\n";

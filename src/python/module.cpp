@@ -2,9 +2,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+
 #include "occ/occ_reader.hpp"
 #include "report/face_report.hpp"
 #include "report/medial_report.hpp"
+#include "report/singularity_report.hpp"
 
 namespace py = pybind11;
 
@@ -35,7 +38,7 @@ py::object face_dict(const mm::FaceModel& face) {
 }  // namespace
 
 PYBIND11_MODULE(_medialmesh, m) {
-  m.doc() = "MedialMesh core: boundary model and medial axis of planar faces";
+  m.doc() = "MedialMesh core: boundary model, medial axis and singularities of planar faces";
   py::register_exception<mm::InputError>(m, "InputError", PyExc_ValueError);
 
   m.def(
@@ -57,6 +60,29 @@ PYBIND11_MODULE(_medialmesh, m) {
       py::arg("brep"), py::arg("name") = "face",
       "Medial axis of one planar face given as BREP text: {'vertices': [{'x','y','r','kind'}], "
       "'edges': [{'from','to','polyline': [[x, y, r], ...]}], 'frame': {...}} in the face's 2-D frame.");
+
+  m.def(
+      "analyse",
+      [](const std::string& brep, const std::string& name, std::optional<double> merge_factor,
+         std::optional<double> mesh_size) {
+        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
+        const mm::MedialAxis axis = mm::compute_medial_axis(face);
+        const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+        std::vector<mm::SingularityGroup> groups;
+        const bool merge = merge_factor || mesh_size;
+        if (merge)
+          groups = mm::merge_singularities(flow.singularities, {merge_factor.value_or(0.75), mesh_size.value_or(0.0)});
+        nlohmann::json report = mm::singularity_report_json(face, flow, merge ? &groups : nullptr);
+        report["medial_axis"] = mm::medial_report_json(axis);
+        report["frame"] = frame_json(face.frame);
+        return to_python(report);
+      },
+      py::arg("brep"), py::arg("name") = "face", py::arg("merge_factor") = py::none(),
+      py::arg("mesh_size") = py::none(),
+      "Medial axis, flow types and singularities of one planar face given as BREP text: "
+      "{'medial_axis': {...}, 'flow': [{'edge','n','polyline'}], 'singularities': [{'x','y','k','at',...}], "
+      "'sum_k', 'predicted_sum_k', 'frame'}; with merge_factor (0.25 to 1) or mesh_size the singularities "
+      "are merged groups with 'members' into 'unmerged'.");
 
   m.def(
       "read_faces",

@@ -42,10 +42,27 @@ void SvgCanvas::dot(Vec2 p, double radius_px, const std::string& style) {
   body_ << "<circle cx=\"" << q.x << "\" cy=\"" << q.y << "\" r=\"" << radius_px << "\" style=\"" << style << "\"/>\n";
 }
 
+namespace {
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+}  // namespace
+
 void SvgCanvas::text(Vec2 p, const std::string& label, double size_px, const std::string& style) {
   const Vec2 q = map(p);
   body_ << "<text x=\"" << q.x << "\" y=\"" << q.y << "\" font-family=\"sans-serif\" font-size=\"" << size_px
-        << "\" style=\"" << style << "\">" << label << "</text>\n";
+        << "\" style=\"" << style << "\">" << escaped(label) << "</text>\n";
 }
 
 std::string SvgCanvas::str() const {
@@ -78,7 +95,7 @@ void draw_legend(SvgCanvas& canvas, const FaceModel& face,
   for (const auto& [colour, label] : items) {
     canvas.dot({x, y}, 5, "fill:" + colour + ";stroke:black;stroke-width:0.5");
     canvas.text({x + 8.0 * unit, y - 4.0 * unit}, label, 12, "fill:#333");
-    x += (16.0 + 7.0 * label.size()) * unit;
+    x += (24.0 + 8.0 * label.size()) * unit;
   }
 }
 
@@ -124,6 +141,32 @@ void draw_medial_axis(SvgCanvas& canvas, const FaceModel& face, const MedialAxis
     legend.emplace_back(vertex_colour(kind), medial_vertex_kind_name(kind));
   }
   draw_legend(canvas, face, legend);
+}
+
+namespace {
+// Flow types n = 0, 1, 2 and anything beyond (possible only next to cusps).
+const char* const kFlowColours[4] = {"#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd"};
+}  // namespace
+
+void draw_mesh_flow(SvgCanvas& canvas, const FaceModel& face, const MeshFlow& flow,
+                    const std::vector<SingularityMark>& marks) {
+  for (const FlowRun& run : flow.runs) {
+    canvas.polyline(run.points, false,
+                    std::string("fill:none;stroke-width:2.5;stroke:") + kFlowColours[std::min(run.n, 3)]);
+  }
+  const double unit = 1.0 / canvas.pixels_per_unit();
+  for (const SingularityMark& m : marks) {
+    const std::string colour = m.k > 0 ? "#d62728" : "#1f4fd6";
+    canvas.dot(m.p, 6, "fill:" + colour + ";stroke:black;stroke-width:0.8");
+    canvas.text(m.p + Vec2{8 * unit, 6 * unit}, (m.k > 0 ? "+" : "") + std::to_string(m.k), 14,
+                "fill:" + colour + ";font-weight:bold");
+  }
+  draw_legend(canvas, face,
+              {{kFlowColours[0], "n=0"},
+               {kFlowColours[1], "n=1"},
+               {kFlowColours[2], "n=2"},
+               {"#d62728", "k>0"},
+               {"#1f4fd6", "k<0"}});
 }
 
 }  // namespace mm

@@ -6,6 +6,7 @@
 
 #include "boundary/face_model.hpp"
 #include "medial/medial_axis.hpp"
+#include "singularity/mesh_flow.hpp"
 
 namespace mm {
 
@@ -36,5 +37,15 @@ void draw_face(SvgCanvas& canvas, const FaceModel& face);
 void draw_corners(SvgCanvas& canvas, const FaceModel& face);
 // The medial axis, its vertices coloured by kind, with a legend.
 void draw_medial_axis(SvgCanvas& canvas, const FaceModel& face, const MedialAxis& axis);
+
+// A singularity as drawn: where it is and its k.
+struct SingularityMark {
+  Vec2 p;
+  int k = 0;
+};
+// The medial axis coloured by flow type (n = 0, 1, 2) and the singularities
+// marked red (k > 0) or blue (k < 0) with their k, with a legend.
+void draw_mesh_flow(SvgCanvas& canvas, const FaceModel& face, const MeshFlow& flow,
+                    const std::vector<SingularityMark>& marks);
 
 }  // namespace mm

@@ -1,0 +1,50 @@
+#include "singularity/merge.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+namespace mm {
+
+std::vector<SingularityGroup> merge_singularities(const std::vector<Singularity>& singularities,
+                                                  const MergeTolerance& tolerance) {
+  if (tolerance.mesh_size < 0.0) throw InputError("the merge mesh size must be positive");
+  if (tolerance.mesh_size == 0.0 && !(tolerance.radius_factor >= 0.25 && tolerance.radius_factor <= 1.0)) {
+    std::ostringstream message;
+    message << "the merge factor must lie in [0.25, 1], got " << tolerance.radius_factor;
+    throw InputError(message.str());
+  }
+  const std::size_t count = singularities.size();
+  std::vector<std::size_t> parent(count);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t j = i + 1; j < count; ++j) {
+      const Singularity &a = singularities[i], &b = singularities[j];
+      const double reach =
+          tolerance.mesh_size > 0.0 ? tolerance.mesh_size : tolerance.radius_factor * std::min(a.r, b.r);
+      if (distance(a.p, b.p) < reach) parent[root(i)] = root(j);
+    }
+  }
+  std::map<std::size_t, SingularityGroup> groups;  // keyed by root, in order of first member
+  for (std::size_t i = 0; i < count; ++i) {
+    SingularityGroup& g = groups[root(i)];
+    g.k += singularities[i].k;
+    g.p = g.p + singularities[i].p;
+    g.members.push_back(static_cast<int>(i));
+  }
+  std::vector<SingularityGroup> merged;
+  for (auto& [key, g] : groups) {
+    if (g.k == 0) continue;
+    g.p = g.p / static_cast<double>(g.members.size());
+    merged.push_back(std::move(g));
+  }
+  std::sort(merged.begin(), merged.end(), [](const auto& a, const auto& b) { return a.members[0] < b.members[0]; });
+  return merged;
+}
+
+}  // namespace mm

@@ -1,0 +1,54 @@
+#pragma once
+// Mesh flow across the medial axis and the singularities it implies (the
+// paper's section 3). The flow type n says how many quarter turns a quad
+// mesh's cross makes between the two touching points of a medial disc; a flux
+// balance says where the mesh must have nodes of 4 + k elements.
+#include <vector>
+
+#include "boundary/face_model.hpp"
+#include "medial/medial_axis.hpp"
+
+namespace mm {
+
+// What produced a singularity.
+enum class SingularitySource {
+  FlowSwitch,        // n changes along a medial edge (adjusted medial angle pi/4 or 3pi/4)
+  CornerSwitch,      // the cross arm used at a concave corner changes along an edge
+  Junction,          // a medial vertex touching three or more places
+  Flare,             // the end of the axis at a convex corner
+  FiniteContact,     // the centre of a touched circular arc (the paper's eq. 7)
+  CurvatureContact,  // an end where the disc's curvature matches the boundary's
+};
+const char* singularity_source_name(SingularitySource source);
+
+struct Singularity {
+  Vec2 p;
+  double r = 0.0;  // medial radius there
+  int k = 0;       // the mesh node there has 4 + k elements
+  SingularitySource at = SingularitySource::Junction;
+  int edge = -1;    // the medial edge of a switch
+  int vertex = -1;  // the medial vertex
+};
+
+// A stretch of one medial edge with a single flow type.
+struct FlowRun {
+  int edge = 0;
+  int n = 0;
+  std::vector<Vec2> points;
+};
+
+struct MeshFlow {
+  std::vector<FlowRun> runs;               // covering every medial edge, in order
+  std::vector<Singularity> singularities;  // k != 0 only
+  int sum_k() const;
+};
+
+// The flow type at every medial point, with the medial angle adjusted where a
+// touching point is a concave corner (the radius turned onto the nearest arm
+// of the corner's cross), and the singularities from the flux balance at the
+// only places it can be unbalanced: the switch points (located by bisection
+// on the exact medial axis) and the medial vertices. The sum of k always
+// equals predicted_sum_k(face).
+MeshFlow compute_mesh_flow(const FaceModel& face, const MedialAxis& axis);
+
+}  // namespace mm
