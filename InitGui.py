@@ -20,8 +20,16 @@ class MedialMeshWorkbench(Workbench):
     ToolTip = "Block-structured all-quad meshes of planar faces, built from the medial axis"
 
     def Initialize(self):
-        # commands are added to this toolbar as they are written
-        self.appendToolbar("MedialMesh", [])
+        import FreeCAD
+
+        try:
+            import MedialMesh.commands  # registers the commands
+        except ImportError as error:  # the compiled core is not built yet
+            FreeCAD.Console.PrintError(f"MedialMesh: {error}\n")
+            return
+        commands = ["MedialMesh_Analyse"]
+        self.appendToolbar("MedialMesh", commands)
+        self.appendMenu("MedialMesh", commands)
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on the bundled example face: installs what is missing, builds,
 # and writes the face report (text and JSON), the medial axis (JSON), the mesh
-# flow with its singularities (text and JSON) and their pictures into out/.
+# flow with its singularities (text and JSON), their pictures, and a FreeCAD
+# document with the face analysed plus a picture of its 3D view into out/.
 #   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -21,6 +22,15 @@ rsvg-convert -o "$out/$name.medial.png" "$out/$name.medial.svg"
 "$cli" singularities "$input" --svg "$out/$name.singularities.svg" | tee "$out/$name.singularities.txt"
 "$cli" singularities "$input" --json >"$out/$name.singularities.json"
 rsvg-convert -o "$out/$name.singularities.png" "$out/$name.singularities.svg"
+# The same face analysed in FreeCAD, as a user would: a document and a picture.
+home="$(mktemp -d)"
+trap 'rm -rf "$home"' EXIT
+HOME="$home" XDG_RUNTIME_DIR="$home" QTWEBENGINE_DISABLE_SANDBOX=1 \
+  MEDIALMESH_DEMO_INPUT="$input" MEDIALMESH_DEMO_OUT="$out/$name.freecad" \
+  xvfb-run -a -s "-screen 0 1280x1024x24" freecad "$root/tools/freecad_demo.py" --module-path "$root" \
+  </dev/null 2>&1 | tee "$home/log" | grep -E "^freecad-demo|Error|Traceback" || true
+grep -q "^freecad-demo" "$home/log" || { echo "demo: the FreeCAD part failed" >&2; exit 1; }
 echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and corners)," \
   "$name.medial.json, $name.medial.svg/.png (medial axis)," \
-  "$name.singularities.txt/.json/.svg/.png (flow types and singularities)"
+  "$name.singularities.txt/.json/.svg/.png (flow types and singularities)," \
+  "$name.freecad.FCStd/.png (the analysis in FreeCAD)"

@@ -43,6 +43,32 @@ def medial_axis(face, name="face"):
     return _medialmesh.medial_axis(face.exportBrepToString(), name)
 
 
+def analyse_face(face, merge=None, mesh_size=None, name="face"):
+    """Return the medial axis, flow types and singularities of a planar face, in 3-D.
+
+    The result (MedialMesh.analysis.FaceAnalysis) has vertices (point, radius,
+    kind), edges (one Part.Edge per medial edge), flow (edge index, flow type
+    n and a Part.Edge per run of one n), singularities (point, k, at, members),
+    unmerged (the singularities before merging), sum_k and predicted_sum_k.
+    merge: merge singularities closer than this factor (0.25 to 1) times their
+    medial radius; mesh_size: or closer than this length; both None: unmerged.
+    Raises InputError naming the face and the problem.
+    """
+    from .analysis import analyse_face as analyse
+
+    return analyse(face, merge=merge, mesh_size=mesh_size, name=name)
+
+
+def make_analysis_object(doc, obj, subname, merge=0.75):
+    """Create, compute and return the parametric analysis of face `subname`
+    ('Face3') of document object `obj`: a Part::FeaturePython whose shape is
+    the medial axis coloured by flow type, with the singularities, that
+    recomputes when the face or its MergeFactor (0: no merging) changes."""
+    from .objects import make_analysis_object as make
+
+    return make(doc, obj, subname, merge=merge)
+
+
 def to_3d(frame, x, y):
     """Map a point of a face's 2-D frame (from boundary_model or medial_axis) to 3-D."""
     return tuple(o + x * a + y * b for o, a, b in zip(frame["origin"], frame["x_dir"], frame["y_dir"]))
