@@ -77,7 +77,9 @@ class FlowBuilder {
   }
 
  private:
-  bool is_concave(int corner) const { return corner >= 0 && face_.corners[corner].angle > kPi; }
+  bool is_concave(int corner) const {
+    return corner >= 0 && index_.is_reflex(face_.corners[corner].loop, face_.corners[corner].vertex);
+  }
 
   int corner_at(const BoundaryPlace& place) const {
     if (place.corner < 0) return -1;
@@ -328,7 +330,7 @@ class FlowBuilder {
       const auto it = arms.emplace(s.corner, std::make_pair(s.arm, s.arm)).first;
       it->second = {std::min(it->second.first, s.arm), std::max(it->second.second, s.arm)};
     };
-    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+    for (int e : vertex.edges) {  // listed once even when both ends are here
       const MedialEdge& edge = axis_.edges[e];
       if (edge.from == v) {
         ++degree;
