@@ -10,6 +10,8 @@ import Part
 
 import _medialmesh
 
+from . import to_3d as frame_to_3d
+
 # Flow types n = 0, 1, 2 (and beyond, next to near-cusps): the colours of the
 # SVG pictures, so that both tell the same story.
 FLOW_COLOURS = [(0.122, 0.467, 0.706), (0.173, 0.627, 0.173), (1.0, 0.498, 0.055), (0.580, 0.404, 0.741)]
@@ -96,10 +98,9 @@ def analyse_face(face, merge=None, mesh_size=None, name="face"):
     if not hasattr(face, "exportBrepToString"):
         raise _medialmesh.InputError(f"{name}: expected a Part.Face, got {type(face).__name__}")
     report = _medialmesh.analyse(face.exportBrepToString(), name, merge, mesh_size)
-    frame = report["frame"]
 
     def to_3d(x, y):
-        return FreeCAD.Vector(*(o + x * a + y * b for o, a, b in zip(frame["origin"], frame["x_dir"], frame["y_dir"])))
+        return FreeCAD.Vector(*frame_to_3d(report["frame"], x, y))
 
     axis = report["medial_axis"]
     vertices = [MedialVertex(to_3d(v["x"], v["y"]), v["r"], v["kind"]) for v in axis["vertices"]]
