@@ -12,10 +12,6 @@
 namespace mm {
 namespace {
 
-FaceModel reference(const std::string& name) {
-  return read_face_models(test::shared_dir() + "/geometry/" + name + ".brep", {}).front();
-}
-
 using test::of_kind;
 
 TEST(MedialReference, EveryReferenceAndRealFaceHasAValidAxis) {
@@ -34,7 +30,7 @@ TEST(MedialReference, EveryReferenceAndRealFaceHasAValidAxis) {
 }
 
 TEST(MedialReference, PlateWithHoleHasFourJunctionsOnItsDiagonals) {
-  const MedialAxis axis = compute_medial_axis(reference("plate_with_hole"));
+  const MedialAxis axis = compute_medial_axis(test::reference_face("plate_with_hole"));
   const auto junctions = of_kind(axis, MedialVertexKind::Junction);
   ASSERT_EQ(junctions.size(), 4u);
   // Equidistant from two sides of the 4 x 4 plate and the hole of radius 1:
@@ -48,7 +44,7 @@ TEST(MedialReference, PlateWithHoleHasFourJunctionsOnItsDiagonals) {
 }
 
 TEST(MedialReference, HalfDiscAxisIsAParabola) {
-  const MedialAxis axis = compute_medial_axis(reference("half_disk"));
+  const MedialAxis axis = compute_medial_axis(test::reference_face("half_disk"));
   ASSERT_EQ(axis.edges.size(), 1u);
   EXPECT_EQ(of_kind(axis, MedialVertexKind::Flare).size(), 2u);
   // Equidistant from the diameter (y = 0) and the arc of radius 1: y = (1 - x^2) / 2.
@@ -58,7 +54,7 @@ TEST(MedialReference, HalfDiscAxisIsAParabola) {
 TEST(MedialReference, RegularPolygonsMeetAtTheirCentres) {
   for (const auto& [name, sides] : {std::pair<const char*, int>{"triangle", 3}, {"pentagon", 5}, {"hexagon", 6}}) {
     SCOPED_TRACE(name);
-    const FaceModel face = reference(name);
+    const FaceModel face = test::reference_face(name);
     Vec2 centroid;
     for (const Corner& c : face.corners) centroid = centroid + c.position / sides;
     const MedialAxis axis = compute_medial_axis(face);
@@ -71,23 +67,23 @@ TEST(MedialReference, RegularPolygonsMeetAtTheirCentres) {
 }
 
 TEST(MedialReference, RoundEndsAndEllipse) {
-  const MedialAxis stadium = compute_medial_axis(reference("stadium"));
+  const MedialAxis stadium = compute_medial_axis(test::reference_face("stadium"));
   ASSERT_EQ(of_kind(stadium, MedialVertexKind::FiniteContact).size(), 2u);
   for (const MedialVertex* v : of_kind(stadium, MedialVertexKind::FiniteContact)) {
     EXPECT_NEAR(std::abs(v->p.x), 1.5, 1e-9);
     EXPECT_NEAR(v->contact_angle, kPi, 1e-9);
   }
-  const MedialAxis circle = compute_medial_axis(reference("circle"));
+  const MedialAxis circle = compute_medial_axis(test::reference_face("circle"));
   ASSERT_EQ(circle.vertices.size(), 1u);
   EXPECT_EQ(circle.vertices[0].kind, MedialVertexKind::FiniteContact);
   EXPECT_NEAR(circle.vertices[0].r, 1.0, 1e-12);
-  const MedialAxis ellipse = compute_medial_axis(reference("ellipse"));
+  const MedialAxis ellipse = compute_medial_axis(test::reference_face("ellipse"));
   ASSERT_EQ(of_kind(ellipse, MedialVertexKind::CurvatureContact).size(), 2u);
   for (const MedialVertex* v : of_kind(ellipse, MedialVertexKind::CurvatureContact)) {
     EXPECT_NEAR(std::abs(v->p.x), 1.5, 1e-9);
     EXPECT_NEAR(v->r, 0.5, 1e-9);
   }
-  const MedialAxis annulus = compute_medial_axis(reference("annulus"));
+  const MedialAxis annulus = compute_medial_axis(test::reference_face("annulus"));
   ASSERT_EQ(annulus.edges.size(), 1u);
   EXPECT_EQ(annulus.edges[0].from, -1);
 }

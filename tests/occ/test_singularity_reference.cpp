@@ -16,10 +16,6 @@
 namespace mm {
 namespace {
 
-FaceModel reference(const std::string& name) {
-  return read_face_models(test::shared_dir() + "/geometry/" + name + ".brep", {}).front();
-}
-
 MeshFlow flow_of(const FaceModel& face) {
   return compute_mesh_flow(face, compute_medial_axis(face));
 }
@@ -62,24 +58,24 @@ TEST(SingularityReference, PoincareHopfHoldsOnEveryReferenceAndRealFace) {
 TEST(SingularityReference, FacesWithoutSingularities) {
   for (const char* name : {"rectangle", "square", "annulus", "indents", "L_shape", "T_shape"}) {
     SCOPED_TRACE(name);
-    EXPECT_TRUE(flow_of(reference(name)).singularities.empty());
+    EXPECT_TRUE(flow_of(test::reference_face(name)).singularities.empty());
   }
 }
 
 TEST(SingularityReference, RegularPolygonsAtTheirCentres) {
   for (const auto& [name, k] : {std::pair{"triangle", -1}, {"pentagon", 1}, {"hexagon", 2}}) {
     SCOPED_TRACE(name);
-    const FaceModel face = reference(name);
+    const FaceModel face = test::reference_face(name);
     expect_at(flow_of(face), k, {corner_centroid(face)}, 1e-9);
   }
 }
 
 TEST(SingularityReference, CircleStadiumAndHalfDisc) {
-  const FaceModel circle = reference("circle");
+  const FaceModel circle = test::reference_face("circle");
   expect_at(flow_of(circle), -4, {0.5 * (bounding_box(circle).min + bounding_box(circle).max)}, 1e-9);
-  expect_at(flow_of(reference("stadium")), -2, {{-1.5, 0}, {1.5, 0}}, 1e-9);
+  expect_at(flow_of(test::reference_face("stadium")), -2, {{-1.5, 0}, {1.5, 0}}, 1e-9);
   const double x = std::sqrt(2.0) - 1;  // where y = (1 - x^2) / 2 meets the radii at 3 pi / 4
-  expect_at(flow_of(reference("half_disk")), -1, {{-x, x}, {x, x}}, 1e-8);
+  expect_at(flow_of(test::reference_face("half_disk")), -1, {{-x, x}, {x, x}}, 1e-8);
 }
 
 TEST(SingularityReference, EllipseSwitchesAtQuarterAndThreeQuarterPi) {
@@ -89,12 +85,12 @@ TEST(SingularityReference, EllipseSwitchesAtQuarterAndThreeQuarterPi) {
   const double inner = x_at(3 * kPi / 4), outer = x_at(kPi / 4);
   EXPECT_NEAR(inner, 0.957, 1e-3);
   EXPECT_NEAR(outer, 1.469, 1e-3);
-  expect_at(flow_of(reference("ellipse")), -1, {{-outer, 0}, {-inner, 0}, {inner, 0}, {outer, 0}}, 1e-8);
+  expect_at(flow_of(test::reference_face("ellipse")), -1, {{-outer, 0}, {-inner, 0}, {inner, 0}, {outer, 0}}, 1e-8);
 }
 
 TEST(SingularityReference, PlateWithHoleHasPlusOneAtEachJunction) {
   const double x = 3.0 / (1.0 + std::sqrt(2.0));
-  const MeshFlow flow = flow_of(reference("plate_with_hole"));
+  const MeshFlow flow = flow_of(test::reference_face("plate_with_hole"));
   expect_at(flow, 1, {{x, x}, {-x, x}, {x, -x}, {-x, -x}}, 1e-9);
   for (const Singularity& s : flow.singularities) EXPECT_EQ(s.at, SingularitySource::Junction);
 }

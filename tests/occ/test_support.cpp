@@ -19,6 +19,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "occ/occ_reader.hpp"
+
 namespace mm::test {
 
 std::string shared_dir() {
@@ -38,6 +40,10 @@ std::vector<std::string> brep_files(const std::string& folder) {
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+FaceModel reference_face(const std::string& name) {
+  return read_face_models(shared_dir() + "/geometry/" + name + ".brep", {}).front();
 }
 
 TopoDS_Face first_face(const TopoDS_Shape& shape) {

@@ -5,12 +5,17 @@
 #include <string>
 #include <vector>
 
+#include "boundary/face_model.hpp"
+
 namespace mm::test {
 
 std::string shared_dir();   // the team's reference geometry (../shared)
 std::string scratch_dir();  // a folder for files the tests write
 
 std::vector<std::string> brep_files(const std::string& folder);
+
+// The face of ../shared/geometry/NAME.brep.
+FaceModel reference_face(const std::string& name);
 
 TopoDS_Face first_face(const TopoDS_Shape& shape);
 void write_brep(const TopoDS_Shape& shape, const std::string& path);
