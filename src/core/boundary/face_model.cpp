@@ -324,6 +324,27 @@ double signed_area(const Loop& loop) {
   return area;
 }
 
+double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, Vec2 ref) {
+  const double lo = std::min(t_from, t_to), hi = std::max(t_from, t_to);
+  if (!(hi > lo)) return 0.0;
+  std::vector<double> cuts{lo};
+  for (double t : pieces(edge)) {
+    if (t > lo && t < hi) cuts.push_back(t);
+  }
+  cuts.push_back(hi);
+  const double reach = distance(evaluate_point(edge, lo), ref) + distance(evaluate_point(edge, hi), ref);
+  const auto integrand = [&](double t) {
+    const CurvePoint cp = evaluate(edge.curve, t);
+    return 0.5 * cross(cp.p - ref, cp.d1);
+  };
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+    total += integrate(integrand, cuts[i], cuts[i + 1], gauss(integrand, cuts[i], cuts[i + 1]),
+                       1e-16 * reach * reach + 1e-300, 0);
+  }
+  return t_to >= t_from ? total : -total;
+}
+
 std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance, double max_turn) {
   std::vector<double> cuts = pieces(edge);
   if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());

@@ -102,6 +102,9 @@ std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chor
 std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance);
 
 double signed_area(const Loop& loop);
+// Integral of cross(p - ref, dp) / 2 along the edge's curve from t_from to
+// t_to: the area a piece of boundary sweeps seen from ref (Green's theorem).
+double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, Vec2 ref);
 
 struct Box {
   Vec2 min;

@@ -67,10 +67,15 @@ class FlowBuilder {
 
   MeshFlow build() {
     std::vector<std::vector<State>> ends(axis_.edges.size());
+    flow_.points.resize(axis_.edges.size());
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
       const std::vector<State> states = edge_states(static_cast<int>(e));
       trace_edge(static_cast<int>(e), states);
       ends[e] = {states.front(), states.back()};
+      for (const State& s : states) {
+        flow_.points[e].push_back(
+            {s.q, std::abs(s.psi - s.q * kHalfPi), s.l.corner, s.l.arm, s.r_side.corner, s.r_side.arm});
+      }
     }
     for (std::size_t v = 0; v < axis_.vertices.size(); ++v) add_vertex(static_cast<int>(v), ends);
     return std::move(flow_);

@@ -37,9 +37,22 @@ struct FlowRun {
   std::vector<Vec2> points;
 };
 
+// The flow at one medial point, as the flux balance used it. A concave corner
+// touched is named with the arm of its cross the radius was turned onto
+// (arm 0 along the corner's outgoing edge, arm nc along its incoming edge).
+struct PointFlow {
+  int q = 0;               // signed flow type, n = |q|; q > 0 where the disc shrinks towards the edge's end
+  double deviation = 0.0;  // how far the adjusted turning is from q quarter turns (0 is ideal)
+  int left_corner = -1;    // index into face.corners, or -1 for a smooth place
+  int left_arm = 0;
+  int right_corner = -1;
+  int right_arm = 0;
+};
+
 struct MeshFlow {
-  std::vector<FlowRun> runs;               // covering every medial edge, in order
-  std::vector<Singularity> singularities;  // k != 0 only
+  std::vector<FlowRun> runs;                   // covering every medial edge, in order
+  std::vector<Singularity> singularities;      // k != 0 only
+  std::vector<std::vector<PointFlow>> points;  // per medial edge, one per point of the edge
   int sum_k() const;
 };
 
