@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "occ/occ_reader.hpp"
+#include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
 #include "report/medial_report.hpp"
 #include "report/singularity_report.hpp"
@@ -20,10 +21,12 @@ constexpr const char* kUsage =
     "       medialmesh svg FILE [--face N] -o OUT.svg\n"
     "       medialmesh medial FILE [--face N] [--json] [--svg OUT.svg]\n"
     "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
+    "       medialmesh decompose FILE [--face N] [--merge F | --merge-size H | --no-merge] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
     "--face takes a number or a comma-separated list (info only).\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
-    "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n";
+    "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n"
+    "decompose merges with F = 0.75 unless told otherwise.\n";
 
 struct Options {
   std::string command;
@@ -33,6 +36,7 @@ struct Options {
   std::string output;
   std::string svg;
   std::optional<mm::MergeTolerance> merge;
+  bool no_merge = false;
 };
 
 struct UsageError {
@@ -76,7 +80,8 @@ Options parse(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) throw UsageError{"no command given"};
   o.command = args[0];
-  if (o.command != "info" && o.command != "svg" && o.command != "medial" && o.command != "singularities")
+  if (o.command != "info" && o.command != "svg" && o.command != "medial" && o.command != "singularities" &&
+      o.command != "decompose")
     throw UsageError{"unknown command '" + o.command + "'"};
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -99,6 +104,8 @@ Options parse(int argc, char** argv) {
       const std::optional<double> number = parse_number(text);
       if (!number) throw UsageError{a + " needs a number, got '" + text + "'"};
       o.merge = a == "--merge" ? mm::MergeTolerance{*number, 0.0} : mm::MergeTolerance{0.75, *number};
+    } else if (a == "--no-merge") {
+      o.no_merge = true;
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError{"unknown option '" + a + "'"};
     } else if (o.file.empty()) {
@@ -111,7 +118,10 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.faces.size() > 1) throw UsageError{o.command + " takes a single --face"};
   if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
-  if (o.merge && o.command != "singularities") throw UsageError{"--merge belongs to the singularities command"};
+  if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose")
+    throw UsageError{"--merge belongs to the singularities and decompose commands"};
+  if (o.merge && o.no_merge) throw UsageError{"--merge and --no-merge exclude each other"};
+  if (o.command == "decompose" && !o.json && o.svg.empty()) throw UsageError{"decompose needs --json or --svg OUT.svg"};
   return o;
 }
 
@@ -145,6 +155,21 @@ void run_singularities(const Options& o, const mm::FaceModel& face) {
   }
 }
 
+void run_decompose(const Options& o, const mm::FaceModel& face) {
+  const mm::MedialAxis axis = mm::compute_medial_axis(face);
+  const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+  mm::DecompositionOptions options;
+  options.merge = !o.no_merge;
+  if (o.merge) options.tolerance = *o.merge;
+  const mm::Decomposition decomposition = mm::decompose(face, axis, flow, options);
+  if (o.json) std::cout << mm::decomposition_report_json(face, decomposition).dump(2) << "\n";
+  if (!o.svg.empty()) {
+    mm::SvgCanvas canvas(mm::bounding_box(face), 800);
+    mm::draw_decomposition(canvas, face, axis, decomposition);
+    canvas.save(o.svg);
+  }
+}
+
 int run(const Options& o) {
   const std::vector<mm::FaceModel> faces = mm::read_face_models(o.file, o.faces);
   if (o.command == "info") {
@@ -162,6 +187,8 @@ int run(const Options& o) {
     canvas.save(o.output);
   } else if (o.command == "singularities") {
     run_singularities(o, faces.front());
+  } else if (o.command == "decompose") {
+    run_decompose(o, faces.front());
   } else {
     const mm::MedialAxis axis = mm::compute_medial_axis(faces.front());
     if (o.json) std::cout << mm::medial_report_json(axis).dump(2) << "\n";

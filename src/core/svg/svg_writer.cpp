@@ -85,7 +85,6 @@ namespace {
 const char* const kCornerColours[5] = {"#d62728", "#ff7f0e", "#2ca02c", "#1f77b4", "#9467bd"};
 }  // namespace
 
-// A row of coloured dots with labels just under the face's bounding box.
 void draw_legend(SvgCanvas& canvas, const FaceModel& face,
                  const std::vector<std::pair<std::string, std::string>>& items) {
   const Box box = bounding_box(face);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "boundary/face_model.hpp"
+#include "decomposition/decomposition.hpp"
 #include "medial/medial_axis.hpp"
 #include "singularity/mesh_flow.hpp"
 
@@ -31,6 +32,9 @@ class SvgCanvas {
   std::ostringstream body_;
 };
 
+// A row of coloured dots with labels under the face's bounding box.
+void draw_legend(SvgCanvas& canvas, const FaceModel& face,
+                 const std::vector<std::pair<std::string, std::string>>& items);
 // The face filled and outlined.
 void draw_face(SvgCanvas& canvas, const FaceModel& face);
 // The face's corners coloured by nc, with a legend under the picture.
@@ -47,5 +51,11 @@ struct SingularityMark {
 // marked red (k > 0) or blue (k < 0) with their k, with a legend.
 void draw_mesh_flow(SvgCanvas& canvas, const FaceModel& face, const MeshFlow& flow,
                     const std::vector<SingularityMark>& marks);
+
+// The blocks shaded and labelled with their number of sides (or "submap"),
+// the medial axis faintly, the splits, and the singularities (fixed ones
+// ringed), with a legend: the picture of the paper's Figs. 21 to 26.
+void draw_decomposition(SvgCanvas& canvas, const FaceModel& face, const MedialAxis& axis,
+                        const Decomposition& decomposition);
 
 }  // namespace mm

@@ -1,0 +1,1256 @@
+#include "decomposition/decomposition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+
+#include "medial/nearest.hpp"
+
+// How the decomposition works.
+//
+// Every split is a pair of medial radii: the radii of a medial point on an
+// edge (an edge cut), or all the radii of a fixed junction (a vertex cut).
+// Radii of different medial points never cross, so cutting the medial axis
+// at some places cuts the face into blocks: each block is one piece of the
+// axis with the part of the face its discs sweep, and the outline of a block
+// is found by walking round its piece of axis with the boundary on the right.
+//
+// Every logical corner of a block is read from the mesh flow, never from a
+// measured angle: the bend of a split at its medial point has 2 - q or 2 + q
+// elements (q the signed flow type there, on the side the disc shrinks to or
+// the other), a split meeting a smooth edge makes two corners of one element,
+// and at a concave corner each block gets the arms of the corner's cross
+// between its two sides. These are the numbers the flux balance summed, so
+// the corners of every block close up by the same telescoping sum that gave
+// Poincare-Hopf: sum(2 - type) = 4 + (sum of k inside). decompose() checks it.
+//
+// The process is the paper's section 4.2: each singularity explores the axis
+// until it meets a neighbouring feature; a neighbour that would leave the
+// block not logically convex is resolved by the best permitted split on the
+// way (n = 0 first, then a convex n = 1, medial angle nearest the ideal), or
+// by a concave corner's split along its cross, or else by fixing a
+// singularity (a cut through it). Blocks that still fail (more than one
+// singularity, a reflex corner, a hole) get their singularity fixed, and
+// multiply connected regions are cut where the flow is straightest.
+namespace mm {
+
+namespace {
+
+constexpr double kNoCut = 1e300;
+
+struct Cut {
+  int edge = -1;  // an edge cut at position s (point index plus fraction)...
+  double s = 0.0;
+  int vertex = -1;  // ...or a vertex cut (a fixed junction)
+  MedialPoint point;
+  PointFlow behind, ahead;  // the flow just before and after s along the edge
+  SplitReason reason = SplitReason::Resolve;
+  std::vector<int> splits;  // indices into the output's splits
+};
+
+// Where a singularity of the mesh flow sits on the medial axis.
+struct Location {
+  int edge = -1;
+  double s = 0.0;
+  int vertex = -1;
+};
+
+// A singularity after merging, with the places of its members.
+struct Unit {
+  int k = 0;
+  Vec2 p;
+  std::vector<int> members;
+  bool fixed = false;
+};
+
+// A split the concave corner's cross allows (Fig. 17): from the corner along
+// arm `arm` to the medial axis, and on along the other radius there.
+struct ConcavePoint {
+  int corner = -1;
+  int arm = 0;
+  int edge = -1;
+  double s = 0.0;
+  MedialPoint point;
+  bool corner_on_left = true;
+  PointFlow flow;
+};
+
+struct End {
+  int edge = 0;
+  bool at_start = true;
+  double angle = 0.0;
+};
+
+struct Step {
+  int edge = 0;
+  double from = 0.0, to = 0.0;
+  bool forward() const { return to > from; }
+};
+
+enum class FeatureKind { Unit, SharpCorner, ConcaveSplit };
+
+struct Neighbour {
+  FeatureKind kind;
+  int id = -1;
+  std::vector<Step> path;  // from the exploring unit to the feature
+};
+
+// One item of a block outline as walked: a range of one loop or a split
+// through a medial point (or a fixed vertex) between two boundary places.
+struct Item {
+  bool split = false;
+  // range: forward along the loop from `a` to `b`, the whole loop if full
+  BoundaryPlace a, b;
+  bool full = false;
+  // split: boundary place a -> interior point -> boundary place b
+  Vec2 middle;
+  int bend = 2;  // elements at the interior point
+  int arm_a = 1, arm_b = 1;
+  int split_a = -1, split_b = -1;  // the splits the two halves lie on
+  bool reversed_a = false, reversed_b = false;
+};
+
+struct Outline {
+  std::vector<Item> items;
+  int component = -1;
+};
+
+class Decomposer {
+ public:
+  Decomposer(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow, const DecompositionOptions& options)
+      : face_(face), axis_(axis), flow_(flow), options_(options), index_(face), tol_(1e-9 * face.size) {
+    for (std::size_t i = 0; i < face.corners.size(); ++i) {
+      corner_of_[{face.corners[i].loop, face.corners[i].vertex}] = static_cast<int>(i);
+    }
+    if (flow.points.size() != axis.edges.size()) throw std::runtime_error(face.name + ": mesh flow has no point flow");
+    locate_singularities();
+    make_units();
+    sort_ends();
+    find_concave_points();
+  }
+
+  Decomposition run() {
+    resolve_neighbours();
+    fix_unresolved();
+    std::vector<Outline> outlines;
+    for (int round = 0;; ++round) {
+      outlines = walk_outlines();
+      if (!fix_invalid_polygons(outlines) || round > static_cast<int>(units_.size())) break;
+    }
+    connect_regions();
+    outlines = walk_outlines();
+    return finish(outlines);
+  }
+
+ private:
+  // ---------------------------------------------------------------- set-up
+
+  int point_count(int e) const { return static_cast<int>(axis_.edges[e].points.size()); }
+  bool closed(int e) const { return axis_.edges[e].from < 0; }
+
+  void locate_singularities() {
+    for (const Singularity& s : flow_.singularities) {
+      Location loc;
+      if (s.vertex >= 0) {
+        loc.vertex = s.vertex;
+      } else {
+        loc.edge = s.edge;
+        loc.s = project(s.edge, s.p);
+      }
+      locations_.push_back(loc);
+    }
+  }
+
+  // Position of p along edge e's polyline (point index plus fraction).
+  double project(int e, Vec2 p) const {
+    const auto& pts = axis_.edges[e].points;
+    double best = 1e300, s = 0.0;
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      const Vec2 a = pts[i].p, d = pts[i + 1].p - a;
+      const double len2 = dot(d, d);
+      const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+      const double dist = distance(a + f * d, p);
+      if (dist < best) best = dist, s = static_cast<double>(i) + f;
+    }
+    return s;
+  }
+
+  void make_units() {
+    if (options_.merge) {
+      for (const SingularityGroup& g : merge_singularities(flow_.singularities, options_.tolerance)) {
+        units_.push_back({g.k, g.p, g.members});
+      }
+    } else {
+      for (std::size_t i = 0; i < flow_.singularities.size(); ++i) {
+        units_.push_back({flow_.singularities[i].k, flow_.singularities[i].p, {static_cast<int>(i)}});
+      }
+    }
+    unit_of_.assign(flow_.singularities.size(), -1);
+    for (std::size_t u = 0; u < units_.size(); ++u) {
+      for (int m : units_[u].members) unit_of_[m] = static_cast<int>(u);
+    }
+  }
+
+  Vec2 end_direction(int e, bool at_start) const {
+    const auto& pts = axis_.edges[e].points;
+    const Vec2 origin = at_start ? pts.front().p : pts.back().p;
+    const int n = point_count(e);
+    for (int i = 1; i < n; ++i) {
+      const Vec2 q = at_start ? pts[i].p : pts[n - 1 - i].p;
+      if (distance(q, origin) > tol_) return q - origin;
+    }
+    return {1, 0};
+  }
+
+  void sort_ends() {
+    ends_.resize(axis_.vertices.size());
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const MedialEdge& edge = axis_.edges[e];
+      if (edge.from < 0) continue;
+      for (const bool at_start : {true, false}) {
+        const Vec2 d = end_direction(static_cast<int>(e), at_start);
+        ends_[at_start ? edge.from : edge.to].push_back({static_cast<int>(e), at_start, std::atan2(d.y, d.x)});
+      }
+    }
+    for (auto& list : ends_) {
+      std::sort(list.begin(), list.end(), [](const End& a, const End& b) { return a.angle < b.angle; });
+    }
+  }
+
+  // ------------------------------------------------- concave corner splits
+
+  BoundaryPlace corner_place(const Corner& c) const {
+    BoundaryPlace place = index_.place(c.loop, c.vertex, face_.loops[c.loop].edges[c.vertex].t_start);
+    place.corner = c.vertex;
+    place.corner_itself = true;
+    place.point = c.position;
+    return place;
+  }
+
+  static Vec2 rotated(Vec2 v, double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+  }
+
+  void find_concave_points() {
+    for (std::size_t ci = 0; ci < face_.corners.size(); ++ci) {
+      const Corner& c = face_.corners[ci];
+      if (!index_.is_reflex(c.loop, c.vertex) || c.nc < 3) continue;
+      const BoundaryEdge& out = face_.loops[c.loop].edges[c.vertex];
+      const Vec2 outgoing = edge_tangent(out, out.t_start);
+      const double spacing = c.angle / c.nc;
+      for (int arm = 1; arm < c.nc; ++arm) {
+        // The arm itself, or the nearest radius the corner has (perpendicular
+        // to one of its edges) where the arm points outside its fan of radii.
+        const double polar = std::clamp(arm * spacing, 0.5 * kPi, c.angle - 0.5 * kPi);
+        if (auto point = concave_point(static_cast<int>(ci), arm, rotated(outgoing, polar))) {
+          concave_.push_back(*point);
+        }
+      }
+    }
+  }
+
+  std::optional<ConcavePoint> concave_point(int ci, int arm, Vec2 d) const {
+    const Corner& c = face_.corners[ci];
+    // The first crossing of the ray with the axis is the medial point whose
+    // radius it is: up to there the corner is the nearest boundary point.
+    double best = 1e300;
+    int best_edge = -1, best_i = 0;
+    double best_f = 0.0;
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const auto& pts = axis_.edges[e].points;
+      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const Vec2 a = pts[i].p, b = pts[i + 1].p;
+        const Vec2 ab = b - a;
+        const double den = cross(d, ab);
+        if (std::abs(den) < 1e-300) continue;
+        const double t = cross(a - c.position, ab) / den;
+        const double f = cross(a - c.position, d) / den;
+        if (t > tol_ && f >= 0.0 && f <= 1.0 && t < best) {
+          best = t;
+          best_edge = static_cast<int>(e);
+          best_i = static_cast<int>(i);
+          best_f = f;
+        }
+      }
+    }
+    if (best_edge < 0) return std::nullopt;
+    const auto& pts = axis_.edges[best_edge].points;
+    const MedialPoint& near = best_f < 0.5 ? pts[best_i] : pts[best_i + 1];
+    const bool on_left = distance(near.left.point, c.position) <= distance(near.right.point, c.position);
+    BoundaryPlace other = on_left ? near.right : near.left;
+    // Exact point on the ray as far from the other side as from the corner.
+    double t = best;
+    for (int it = 0; it < 30; ++it) {
+      const Vec2 m = c.position + t * d;
+      other = nearest_on_run(index_, other, m);
+      const Vec2 away = m - other.point;
+      const double dist = norm(away);
+      if (dist <= 0) break;
+      const double slope = 1.0 - dot(d, away) / dist;
+      if (std::abs(slope) < 1e-6) break;
+      const double step = (t - dist) / slope;
+      t -= step;
+      if (std::abs(step) < 1e-13 * face_.size) break;
+    }
+    if (!(t > tol_) || std::abs(t - best) > 0.25 * best + 1e-6 * face_.size) t = best;
+    ConcavePoint cp;
+    cp.corner = ci;
+    cp.arm = arm;
+    cp.edge = best_edge;
+    cp.point.p = c.position + t * d;
+    cp.point.r = t;
+    other = nearest_on_run(index_, other, cp.point.p);
+    (on_left ? cp.point.left : cp.point.right) = corner_place(c);
+    (on_left ? cp.point.right : cp.point.left) = other;
+    cp.s = project(best_edge, cp.point.p);
+    cp.corner_on_left = on_left;
+    cp.flow = flow_.points[best_edge][best_f < 0.5 ? best_i : best_i + 1];
+    (on_left ? cp.flow.left_corner : cp.flow.right_corner) = ci;
+    (on_left ? cp.flow.left_arm : cp.flow.right_arm) = arm;
+    const double n = point_count(best_edge) - 1;
+    if (cp.s <= 1e-9 || cp.s >= n - 1e-9) return std::nullopt;  // at a vertex: that vertex decides
+    return cp;
+  }
+
+  // ------------------------------------------------------------- the cuts
+
+  bool cut_at(int e, double s) const {
+    for (const Cut& c : cuts_) {
+      if (c.edge == e && std::abs(c.s - s) < 1e-9) return true;
+    }
+    return false;
+  }
+
+  bool vertex_cut(int v) const {
+    return std::any_of(cuts_.begin(), cuts_.end(), [&](const Cut& c) { return c.vertex == v; });
+  }
+
+  void cut_edge_at_point(int e, int i, SplitReason reason) {
+    if (cut_at(e, i)) return;
+    Cut c;
+    c.edge = e;
+    c.s = i;
+    c.point = axis_.edges[e].points[i];
+    c.behind = c.ahead = flow_.points[e][i];
+    c.reason = reason;
+    cuts_.push_back(c);
+  }
+
+  // Returns whether the cut is new.
+  bool cut_concave(const ConcavePoint& cp) {
+    if (cut_at(cp.edge, cp.s)) return false;
+    Cut c;
+    c.edge = cp.edge;
+    c.s = cp.s;
+    c.point = cp.point;
+    c.behind = c.ahead = cp.flow;
+    c.reason = SplitReason::ConcaveCorner;
+    cuts_.push_back(c);
+    return true;
+  }
+
+  // Cuts through a unit's members: they become corners of blocks. Only
+  // switches on edges and junctions can be fixed (a finite contact's k
+  // belongs to the disc sector round it, which no cut can take from it).
+  bool fixable(int u) const {
+    for (int m : units_[u].members) {
+      const Location& loc = locations_[m];
+      if (loc.vertex >= 0 && (axis_.vertices[loc.vertex].kind != MedialVertexKind::Junction ||
+                              axis_.vertices[loc.vertex].edges.size() < 2))
+        return false;
+    }
+    return true;
+  }
+
+  void fix(int u) {
+    units_[u].fixed = true;
+    for (int m : units_[u].members) {
+      const Location& loc = locations_[m];
+      if (loc.vertex >= 0) {
+        if (vertex_cut(loc.vertex)) continue;
+        Cut c;
+        c.vertex = loc.vertex;
+        c.reason = SplitReason::Fix;
+        cuts_.push_back(c);
+        continue;
+      }
+      if (cut_at(loc.edge, loc.s)) continue;
+      const auto& pts = axis_.edges[loc.edge].points;
+      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
+      Cut c;
+      c.edge = loc.edge;
+      c.s = loc.s;
+      c.point.p = flow_.singularities[m].p;
+      c.point.r = flow_.singularities[m].r;
+      c.point.left = nearest_on_run(index_, pts[i].left, c.point.p);
+      c.point.right = nearest_on_run(index_, pts[i].right, c.point.p);
+      c.behind = flow_.points[loc.edge][i];
+      c.ahead = flow_.points[loc.edge][i + 1];
+      c.reason = SplitReason::Fix;
+      cuts_.push_back(c);
+    }
+  }
+
+  // ------------------------------------------------------------ exploring
+
+  struct Mark {
+    double s;
+    int unit = -1;     // a member of this unit
+    int concave = -1;  // a concave corner's split
+    bool cut = false;
+  };
+
+  std::vector<std::vector<Mark>> edge_marks() const {
+    std::vector<std::vector<Mark>> marks(axis_.edges.size());
+    for (std::size_t m = 0; m < locations_.size(); ++m) {
+      if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && !units_[unit_of_[m]].fixed)
+        marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
+    }
+    for (std::size_t i = 0; i < concave_.size(); ++i) {
+      if (!cut_at(concave_[i].edge, concave_[i].s))
+        marks[concave_[i].edge].push_back({concave_[i].s, -1, static_cast<int>(i)});
+    }
+    for (const Cut& c : cuts_) {
+      if (c.edge >= 0) marks[c.edge].push_back({c.s, -1, -1, true});
+    }
+    for (auto& list : marks) {
+      std::sort(list.begin(), list.end(), [](const Mark& a, const Mark& b) { return a.s < b.s; });
+    }
+    return marks;
+  }
+
+  int vertex_unit(int v) const {
+    for (std::size_t m = 0; m < locations_.size(); ++m) {
+      if (locations_[m].vertex == v && unit_of_[m] >= 0 && !units_[unit_of_[m]].fixed) return unit_of_[m];
+    }
+    return -1;
+  }
+
+  int corner_index(const BoundaryPlace& place) const {
+    if (place.corner < 0) return -1;
+    const auto it = corner_of_.find({place.loop, place.corner});
+    return it == corner_of_.end() ? -1 : it->second;
+  }
+
+  // The features the medial axis leads to from unit u, each with its path.
+  std::vector<Neighbour> explore(int u) const {
+    const auto marks = edge_marks();
+    std::vector<Neighbour> found;
+    std::set<std::tuple<int, int, double>> visited;
+    std::vector<Step> path;
+    // Walk along edge e from s0 in direction dir until a feature or a vertex.
+    std::function<void(int, double, int)> walk = [&](int e, double s0, int dir) {
+      if (!visited.insert({e, dir, s0}).second) return;
+      const int last = point_count(e) - 1;
+      const Mark* next = nullptr;
+      for (const Mark& m : marks[e]) {
+        if (dir > 0 && m.s > s0 + 1e-12 && (!next || m.s < next->s)) next = &m;
+        if (dir < 0 && m.s < s0 - 1e-12 && (!next || m.s > next->s)) next = &m;
+      }
+      if (next) {
+        path.push_back({e, s0, next->s});
+        if (next->unit >= 0 && next->unit != u) found.push_back({FeatureKind::Unit, next->unit, path});
+        if (next->concave >= 0) found.push_back({FeatureKind::ConcaveSplit, next->concave, path});
+        path.pop_back();
+        return;
+      }
+      const double end = dir > 0 ? last : 0;
+      path.push_back({e, s0, end});
+      if (closed(e)) {
+        walk(e, dir > 0 ? 0.0 : static_cast<double>(last), dir);
+      } else {
+        arrive(e, dir > 0 ? axis_.edges[e].to : axis_.edges[e].from, dir < 0, walk, found, u, path);
+      }
+      path.pop_back();
+    };
+    for (int m : units_[u].members) {
+      const Location& loc = locations_[m];
+      if (loc.vertex >= 0) {
+        for (const End& end : ends_[loc.vertex]) {
+          walk(end.edge, end.at_start ? 0.0 : point_count(end.edge) - 1.0, end.at_start ? 1 : -1);
+        }
+      } else {
+        walk(loc.edge, loc.s, 1);
+        walk(loc.edge, loc.s, -1);
+      }
+    }
+    return found;
+  }
+
+  template <class Walk>
+  void arrive(int e, int v, bool at_start, Walk& walk, std::vector<Neighbour>& found, int u,
+              std::vector<Step>& path) const {
+    const MedialVertex& vertex = axis_.vertices[v];
+    const int w = vertex_unit(v);
+    if (w >= 0) {
+      if (w != u) found.push_back({FeatureKind::Unit, w, path});
+      return;
+    }
+    if (vertex_cut(v)) return;
+    if (vertex.kind == MedialVertexKind::Flare) {
+      const int ci = vertex.touches.empty() ? -1 : corner_index(vertex.touches.front());
+      if (ci >= 0 && face_.corners[ci].nc == 0) found.push_back({FeatureKind::SharpCorner, ci, path});
+      return;
+    }
+    if (vertex.kind != MedialVertexKind::Junction) return;  // finite and curvature contacts: resolved
+    for (const End& end : ends_[v]) {
+      if (end.edge == e && end.at_start == at_start) continue;
+      walk(end.edge, end.at_start ? 0.0 : point_count(end.edge) - 1.0, end.at_start ? 1 : -1);
+    }
+  }
+
+  // Elements the unit's block gets at the bend of a cut with flow q, the unit
+  // lying behind the cut (it was reached walking forwards) or ahead of it.
+  static int bend_for(bool unit_behind, int q) { return unit_behind ? 2 + q : 2 - q; }
+
+  // The best permitted split on the path: n = 0 anywhere; n = 1 only where
+  // its bend is convex for the unit and the feature is no singularity.
+  std::optional<std::pair<int, int>> best_cut(const std::vector<Step>& path, bool convex_n1_allowed) const {
+    double length = 0.0;
+    for (const Step& st : path) length += arc(st.edge, st.from, st.to);
+    using Score = std::tuple<int, int, int, double>;
+    std::optional<Score> best;
+    std::pair<int, int> where{-1, -1};
+    double walked = 0.0;
+    for (const Step& st : path) {
+      const auto& pts = axis_.edges[st.edge].points;
+      const int lo = static_cast<int>(std::floor(std::min(st.from, st.to))) + 1;
+      const int hi = static_cast<int>(std::ceil(std::max(st.from, st.to))) - 1;
+      for (int i = lo; i <= hi; ++i) {
+        const PointFlow& pf = flow_.points[st.edge][i];
+        if (pf.left_corner >= 0 || pf.right_corner >= 0) continue;
+        if (distance(pts[i].left.point, pts[i].right.point) < 1e-6 * face_.size) continue;
+        const int n = std::abs(pf.q);
+        if (n > 1) continue;
+        if (n == 1 && (!convex_n1_allowed || bend_for(st.forward(), pf.q) != 1)) continue;
+        const double at = walked + arc(st.edge, st.from, i);
+        const bool outer = at < 0.1 * length || at > 0.9 * length;
+        const Score score{n, static_cast<int>(pf.deviation / 0.035), outer ? 1 : 0, std::abs(at - 0.5 * length)};
+        if (!best || score < *best) best = score, where = {st.edge, i};
+      }
+      walked += arc(st.edge, st.from, st.to);
+    }
+    if (!best) return std::nullopt;
+    return where;
+  }
+
+  // Length of the edge's polyline between two positions.
+  double arc(int e, double a, double b) const {
+    const auto& pts = axis_.edges[e].points;
+    const double lo = std::min(a, b), hi = std::max(a, b);
+    const auto at = [&](double s) {
+      const int i = std::clamp(static_cast<int>(std::floor(s)), 0, point_count(e) - 2);
+      return pts[i].p + (s - i) * (pts[i + 1].p - pts[i].p);
+    };
+    double total = 0.0;
+    Vec2 prev = at(lo);
+    for (int i = static_cast<int>(std::floor(lo)) + 1; i < hi; ++i) {
+      total += distance(prev, pts[i].p);
+      prev = pts[i].p;
+    }
+    return total + distance(prev, at(hi));
+  }
+
+  // Whether a concave corner's split makes a straight or convex side for the unit.
+  bool concave_resolves(const ConcavePoint& cp, bool unit_behind) const {
+    const int nc = face_.corners[cp.corner].nc;
+    const int bend = bend_for(unit_behind, cp.flow.q);
+    const int at_corner = (cp.corner_on_left == unit_behind) ? cp.arm : nc - cp.arm;
+    return bend >= 1 && bend <= 2 && at_corner >= 1 && at_corner <= 2;
+  }
+
+  // Step 3 of section 4.2, first half: splits where a permitted one exists.
+  void resolve_neighbours() {
+    for (std::size_t u = 0; u < units_.size(); ++u) {
+      for (const Neighbour& nb : explore(static_cast<int>(u))) {
+        const bool behind = nb.path.back().forward();
+        if (nb.kind == FeatureKind::ConcaveSplit && concave_resolves(concave_[nb.id], behind)) {
+          cut_concave(concave_[nb.id]);
+          continue;
+        }
+        if (const auto where = best_cut(nb.path, nb.kind != FeatureKind::Unit)) {
+          cut_edge_at_point(where->first, where->second, SplitReason::Resolve);
+        }
+      }
+    }
+  }
+
+  // Second half: where no permitted split exists, fix a singularity: the
+  // neighbour if that leaves this unit a convex corner, else this one.
+  void fix_unresolved() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (std::size_t u = 0; u < units_.size(); ++u) {
+        if (units_[u].fixed) continue;
+        for (const Neighbour& nb : explore(static_cast<int>(u))) {
+          const bool behind = nb.path.back().forward();
+          if (nb.kind == FeatureKind::ConcaveSplit && concave_resolves(concave_[nb.id], behind)) {
+            changed = cut_concave(concave_[nb.id]) || changed;
+            continue;
+          }
+          if (nb.kind == FeatureKind::Unit && fixable(nb.id) && neighbour_fix_convex(nb)) {
+            fix(nb.id);
+            notes_.push_back("fixed a k = " + std::to_string(units_[nb.id].k) + " singularity next to another");
+          } else if (fixable(static_cast<int>(u))) {
+            fix(static_cast<int>(u));
+            notes_.push_back("fixed a k = " + std::to_string(units_[u].k) + " singularity: no permitted split");
+          } else {
+            continue;
+          }
+          changed = true;
+          break;
+        }
+      }
+    }
+  }
+
+  // Whether fixing the neighbouring unit at the end of the path leaves the
+  // exploring unit a straight or convex corner there.
+  bool neighbour_fix_convex(const Neighbour& nb) const {
+    const Unit& v = units_[nb.id];
+    if (v.members.size() != 1) return false;
+    const Location& loc = locations_[v.members.front()];
+    const Step& last = nb.path.back();
+    int type = 0;
+    if (loc.vertex >= 0) {
+      const bool at_start = last.to == 0.0;
+      type = 2 - away_q(last.edge, at_start);
+    } else {
+      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
+      type = last.forward() ? 2 + flow_.points[loc.edge][i].q : 2 - flow_.points[loc.edge][i + 1].q;
+    }
+    return type >= 1 && type <= 2;
+  }
+
+  // q of an edge at one of its ends, pointing away from that end's vertex.
+  int away_q(int e, bool at_start) const { return at_start ? flow_.points[e].front().q : -flow_.points[e].back().q; }
+
+  // ------------------------------------------------------- regions and walks
+
+  // Components of the axis between the cuts: node ids for vertices and for
+  // the intervals of every edge between its cuts.
+  struct Pieces {
+    std::vector<std::vector<int>> cuts;  // per edge, cut indices sorted by s
+    std::vector<int> base;               // first interval id of each edge
+    std::vector<int> parent;
+    int find(int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    }
+    void join(int a, int b) { parent[find(a)] = find(b); }
+  };
+
+  Pieces pieces() const {
+    Pieces p;
+    p.cuts.resize(axis_.edges.size());
+    for (std::size_t c = 0; c < cuts_.size(); ++c) {
+      if (cuts_[c].edge >= 0) p.cuts[cuts_[c].edge].push_back(static_cast<int>(c));
+    }
+    int next = static_cast<int>(axis_.vertices.size());
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      auto& list = p.cuts[e];
+      std::sort(list.begin(), list.end(), [&](int a, int b) { return cuts_[a].s < cuts_[b].s; });
+      p.base.push_back(next);
+      next += static_cast<int>(list.size()) + 1;
+    }
+    p.parent.resize(next);
+    std::iota(p.parent.begin(), p.parent.end(), 0);
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const MedialEdge& edge = axis_.edges[e];
+      const int count = static_cast<int>(p.cuts[e].size());
+      if (edge.from < 0) {
+        p.join(p.base[e], p.base[e] + count);  // a closed loop: its first and last intervals meet
+        continue;
+      }
+      if (!vertex_cut(edge.from)) p.join(edge.from, p.base[e]);
+      if (!vertex_cut(edge.to)) p.join(edge.to, p.base[e] + count);
+    }
+    return p;
+  }
+
+  int interval_of(const Pieces& p, int e, double s) const {
+    int i = 0;
+    for (int c : p.cuts[e]) {
+      if (cuts_[c].s < s) ++i;
+    }
+    return p.base[e] + i;
+  }
+
+  // The component a flow singularity lies in, or -1 when it is on a cut.
+  int component_of(Pieces& p, int m) const {
+    const Location& loc = locations_[m];
+    if (loc.vertex >= 0) return vertex_cut(loc.vertex) ? -1 : p.find(loc.vertex);
+    if (cut_at(loc.edge, loc.s)) return -1;
+    return p.find(interval_of(p, loc.edge, loc.s));
+  }
+
+  const BoundaryPlace& side_place(const MedialPoint& m, bool forward) const { return forward ? m.right : m.left; }
+
+  // Walks round every piece of the axis: one closed outline per boundary of a region.
+  std::vector<Outline> walk_outlines() {
+    make_splits();
+    Pieces p = pieces();
+    std::vector<Outline> outlines;
+    if (axis_.edges.empty()) {
+      // A disc: one finite contact, the whole outer loop round it.
+      Outline o;
+      Item all;
+      all.a = all.b = index_.place(0, 0, face_.loops[0].edges[0].t_start);
+      all.full = true;
+      o.items.push_back(all);
+      o.component = axis_.vertices.empty() ? 0 : p.find(0);
+      outlines.push_back(o);
+      return outlines;
+    }
+    std::set<std::tuple<int, bool, int>> visited;  // (edge, forward, interval)
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const int intervals = static_cast<int>(p.cuts[e].size()) + 1;
+      for (int i = 0; i < intervals; ++i) {
+        for (const bool forward : {true, false}) {
+          if (visited.count({static_cast<int>(e), forward, i})) continue;
+          Outline o = walk(p, static_cast<int>(e), forward, i, visited);
+          o.component = p.find(p.base[e] + i);
+          outlines.push_back(std::move(o));
+        }
+      }
+    }
+    return outlines;
+  }
+
+  // Position where interval i of edge e starts or ends, and the medial point there.
+  double interval_start(const Pieces& p, int e, int i) const { return i == 0 ? 0.0 : cuts_[p.cuts[e][i - 1]].s; }
+  double interval_end(const Pieces& p, int e, int i) const {
+    const int count = static_cast<int>(p.cuts[e].size());
+    return i == count ? point_count(e) - 1.0 : cuts_[p.cuts[e][i]].s;
+  }
+
+  Outline walk(const Pieces& p, int e0, bool fwd0, int i0, std::set<std::tuple<int, bool, int>>& visited) {
+    Outline o;
+    int e = e0, i = i0;
+    bool fwd = fwd0;
+    // The walk enters each interval at one end and leaves at the other.
+    for (int guard = 0; guard < 4 * static_cast<int>(cuts_.size() + axis_.edges.size()) + 8; ++guard) {
+      visited.insert({e, fwd, i});
+      const int count = static_cast<int>(p.cuts[e].size());
+      Item range;
+      range.a = place_at(p, e, fwd, i, true);
+      range.b = place_at(p, e, fwd, i, false);
+      range.full = closed(e) && count == 0;
+      o.items.push_back(range);
+      const bool at_cut = fwd ? i < count : i > 0;
+      if (at_cut) {
+        const Cut& c = cuts_[p.cuts[e][fwd ? i : i - 1]];
+        o.items.push_back(cut_item(c, fwd));
+        fwd = !fwd;
+      } else if (closed(e)) {
+        i = fwd ? 0 : count;  // round the loop into its first (last) interval
+      } else {
+        const int v = fwd ? axis_.edges[e].to : axis_.edges[e].from;
+        const bool at_start = !fwd;
+        if (vertex_cut(v)) {
+          o.items.push_back(vertex_item(v, e, at_start));
+          fwd = !fwd;
+        } else {
+          const auto& list = ends_[v];
+          std::size_t k = 0;
+          while (k < list.size() && !(list[k].edge == e && list[k].at_start == at_start)) ++k;
+          const End& next = list[(k + 1) % list.size()];
+          e = next.edge;
+          fwd = next.at_start;
+          i = fwd ? 0 : static_cast<int>(p.cuts[e].size());
+          // The boundary between the two edges' touches: empty at a junction,
+          // the touched arc at a finite contact.
+          Item gap;
+          gap.a = range.b;
+          gap.b = place_at(p, e, fwd, i, true);
+          o.items.push_back(gap);
+        }
+      }
+      if (e == e0 && fwd == fwd0 && i == i0) return o;
+    }
+    throw std::runtime_error(face_.name + ": decomposition: a block outline does not close");
+  }
+
+  // The boundary place on the walking side at position s of interval i.
+  BoundaryPlace place_at(const Pieces& p, int e, bool fwd, int i, bool entering) const {
+    const auto& pts = axis_.edges[e].points;
+    const int count = static_cast<int>(p.cuts[e].size());
+    // Interval i is bounded by cut i - 1 below and cut i above.
+    const bool low_end = fwd == entering;
+    const int cut = low_end ? (i > 0 ? p.cuts[e][i - 1] : -1) : (i < count ? p.cuts[e][i] : -1);
+    if (cut >= 0) return side_place(cuts_[cut].point, fwd);
+    return side_place(low_end ? pts.front() : pts.back(), fwd);
+  }
+
+  // The arm of a concave corner's cross a split meets the boundary along;
+  // on a smooth edge it is arm 1 of the edge's own straight cross.
+  int split_arm(const BoundaryPlace& place, int corner, int arm) const {
+    if (corner >= 0) return arm;
+    const int ci = place_corner(place);
+    if (ci < 0) return 1;
+    const Corner& c = face_.corners[ci];
+    return place.edge == c.vertex ? 1 : c.nc - 1;
+  }
+
+  // The face corner a boundary place stands on, or -1.
+  int place_corner(const BoundaryPlace& place) const {
+    const Loop& loop = face_.loops[place.loop];
+    const int n = static_cast<int>(loop.edges.size());
+    for (const int v : {place.edge, (place.edge + 1) % n}) {
+      const auto it = corner_of_.find({place.loop, v});
+      if (it != corner_of_.end() && distance(face_.corners[it->second].position, place.point) <= tol_)
+        return it->second;
+    }
+    return -1;
+  }
+
+  Item cut_item(const Cut& c, bool fwd) const {
+    // Walking forwards the block is behind the cut: right side, bend, left side.
+    const PointFlow& f = fwd ? c.behind : c.ahead;
+    Item it;
+    it.split = true;
+    it.a = fwd ? c.point.right : c.point.left;
+    it.b = fwd ? c.point.left : c.point.right;
+    it.middle = c.point.p;
+    it.bend = fwd ? 2 + f.q : 2 - f.q;
+    it.arm_a = fwd ? split_arm(it.a, f.right_corner, f.right_arm) : split_arm(it.a, f.left_corner, f.left_arm);
+    it.arm_b = fwd ? split_arm(it.b, f.left_corner, f.left_arm) : split_arm(it.b, f.right_corner, f.right_arm);
+    it.split_a = it.split_b = c.splits.empty() ? -1 : c.splits.front();
+    it.reversed_a = it.reversed_b = !fwd;
+    return it;
+  }
+
+  // A fixed junction, entered along one of its edges: round that edge's sector.
+  Item vertex_item(int v, int e, bool at_start) const {
+    const MedialPoint& end = at_start ? axis_.edges[e].points.front() : axis_.edges[e].points.back();
+    const PointFlow& f = at_start ? flow_.points[e].front() : flow_.points[e].back();
+    // Arriving at the start walks backwards (left side first), at the end forwards.
+    const bool fwd = !at_start;
+    Item it;
+    it.split = true;
+    it.a = fwd ? end.right : end.left;
+    it.b = fwd ? end.left : end.right;
+    it.middle = axis_.vertices[v].p;
+    it.bend = 2 - away_q(e, at_start);
+    it.arm_a = fwd ? split_arm(it.a, f.right_corner, f.right_arm) : split_arm(it.a, f.left_corner, f.left_arm);
+    it.arm_b = fwd ? split_arm(it.b, f.left_corner, f.left_arm) : split_arm(it.b, f.right_corner, f.right_arm);
+    it.split_a = radius_split(v, it.a.point);
+    it.split_b = radius_split(v, it.b.point);
+    it.reversed_a = false;  // radii run from the boundary to the vertex
+    it.reversed_b = true;
+    return it;
+  }
+
+  int radius_split(int v, Vec2 touch) const {
+    for (const Cut& c : cuts_) {
+      if (c.vertex != v) continue;
+      for (int s : c.splits) {
+        if (distance(splits_[s].polyline.front(), touch) <= 1e3 * tol_) return s;
+      }
+    }
+    return -1;
+  }
+
+  // ------------------------------------------------- checking the polygons
+
+  // A polygon block must hold one unit, whole, and have only convex corners,
+  // a single simple outline, and at most six sides. Fixes the units of blocks
+  // that fail; returns whether anything changed.
+  bool fix_invalid_polygons(const std::vector<Outline>& outlines) {
+    Pieces p = pieces();
+    std::map<int, std::vector<int>> units_in, outlines_of;
+    std::set<int> broken_units;
+    for (std::size_t u = 0; u < units_.size(); ++u) {
+      if (units_[u].fixed) continue;
+      std::set<int> comps;
+      for (int m : units_[u].members) comps.insert(component_of(p, m));
+      if (comps.size() != 1 || comps.count(-1)) {
+        broken_units.insert(static_cast<int>(u));
+        continue;
+      }
+      units_in[*comps.begin()].push_back(static_cast<int>(u));
+    }
+    for (std::size_t i = 0; i < outlines.size(); ++i) outlines_of[outlines[i].component].push_back(static_cast<int>(i));
+    for (const auto& [comp, list] : units_in) {
+      bool ok = list.size() == 1 && outlines_of[comp].size() == 1;
+      if (ok) {
+        const Outline& o = outlines[outlines_of[comp].front()];
+        const std::vector<int> types = corner_types(o);
+        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) &&
+             units_[list.front()].k <= 2 && units_[list.front()].k >= -4;
+      }
+      if (!ok) broken_units.insert(list.begin(), list.end());
+    }
+    bool changed = false;
+    for (int u : broken_units) {
+      if (!fixable(u)) continue;
+      fix(u);
+      notes_.push_back("fixed a k = " + std::to_string(units_[u].k) +
+                       " singularity: its block was not a convex polygon");
+      changed = true;
+    }
+    return changed;
+  }
+
+  // A block outline that uses no split twice.
+  static bool simple(const Outline& o) {
+    std::set<int> seen;
+    for (const Item& it : o.items) {
+      if (!it.split) continue;
+      if (!seen.insert(it.split_a).second) return false;
+      if (it.split_b != it.split_a && !seen.insert(it.split_b).second) return false;
+    }
+    return true;
+  }
+
+  // Section 4.6: cut the cycles of the axis where the flow is straightest,
+  // keeping the worst places to cut for the spanning forest (Kruskal).
+  void connect_regions() {
+    Pieces p = pieces();
+    struct Candidate {
+      std::tuple<int, int, double> cost;
+      int edge, interval, point;
+    };
+    std::vector<Candidate> intervals;
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const int count = static_cast<int>(p.cuts[e].size());
+      for (int i = 0; i <= count; ++i) {
+        const double lo = interval_start(p, static_cast<int>(e), i), hi = interval_end(p, static_cast<int>(e), i);
+        Candidate c{{1 << 20, 0, 0.0}, static_cast<int>(e), i, -1};
+        for (int k = static_cast<int>(std::floor(lo)) + 1; k <= static_cast<int>(std::ceil(hi)) - 1; ++k) {
+          const PointFlow& pf = flow_.points[e][k];
+          const bool smooth = pf.left_corner < 0 && pf.right_corner < 0;
+          const double mid = std::abs(k - 0.5 * (lo + hi)) / std::max(hi - lo, 1.0);
+          const std::tuple<int, int, double> cost{std::abs(pf.q) + (smooth ? 0 : 8),
+                                                  static_cast<int>(pf.deviation / 0.035), mid};
+          if (cost < c.cost) c.cost = cost, c.point = k;
+        }
+        intervals.push_back(c);
+      }
+    }
+    // Worst first: they join the forest; a cheap interval closing a cycle is cut.
+    std::sort(intervals.begin(), intervals.end(),
+              [](const Candidate& a, const Candidate& b) { return a.cost > b.cost; });
+    std::vector<int> parent(p.parent.size() + 2 * intervals.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto find = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    int fresh = static_cast<int>(p.parent.size());
+    for (const Candidate& c : intervals) {
+      const MedialEdge& edge = axis_.edges[c.edge];
+      const int count = static_cast<int>(p.cuts[c.edge].size());
+      // The interval's two end nodes: a vertex not cut, or a dead end at a cut.
+      const auto node = [&](bool low) {
+        const bool at_cut = low ? c.interval > 0 : c.interval < count;
+        if (!at_cut && edge.from < 0) return p.base[c.edge];  // round a closed loop
+        if (at_cut) return fresh++;
+        const int v = low ? edge.from : edge.to;
+        return vertex_cut(v) ? fresh++ : v;
+      };
+      const int a = find(node(true)), b = find(node(false));
+      if (a != b) {
+        parent[a] = b;
+        continue;
+      }
+      if (c.point >= 0) {
+        cut_edge_at_point(c.edge, c.point, SplitReason::Connect);
+      } else {
+        throw std::runtime_error(face_.name + ": decomposition: a loop of the medial axis has no point to split at");
+      }
+    }
+  }
+
+  // ------------------------------------------------------------ the result
+
+  void make_splits() {
+    splits_.clear();
+    for (Cut& c : cuts_) {
+      c.splits.clear();
+      if (c.edge >= 0) {
+        c.splits.push_back(static_cast<int>(splits_.size()));
+        splits_.push_back({{c.point.right.point, c.point.p, c.point.left.point}, c.reason});
+        continue;
+      }
+      // A fixed junction: one radius to every place it touches.
+      const MedialVertex& v = axis_.vertices[c.vertex];
+      for (const BoundaryPlace& t : v.touches) {
+        c.splits.push_back(static_cast<int>(splits_.size()));
+        splits_.push_back({{t.point, v.p}, c.reason});
+      }
+    }
+  }
+
+  // The corner type at every junction of consecutive items (after merging
+  // ranges and dropping empty ones), in order; also used for checking.
+  std::vector<int> corner_types(const Outline& o) const {
+    std::vector<int> types;
+    for (const Node& n : nodes(o)) types.push_back(n.type);
+    return types;
+  }
+
+  struct Node {  // a point of the outline where a corner may be
+    Vec2 p;
+    int type = 2;
+  };
+  struct Flat {  // the outline as pieces with the corner type at each piece's start
+    std::vector<OutlinePiece> pieces;
+    std::vector<int> start_type;
+  };
+
+  std::vector<Node> nodes(const Outline& o) const {
+    const Flat flat = flatten(o);
+    std::vector<Node> result;
+    for (std::size_t i = 0; i < flat.pieces.size(); ++i) {
+      if (flat.start_type[i] != 2) result.push_back({flat.pieces[i].points.front(), flat.start_type[i]});
+    }
+    return result;
+  }
+
+  // Position along a loop: edge index plus the fraction of its parameter range.
+  double loop_position(const BoundaryPlace& place) const {
+    const Loop& loop = face_.loops[place.loop];
+    const int n = static_cast<int>(loop.edges.size());
+    if (place.corner >= 0 && place.corner_itself) return place.corner;
+    const BoundaryEdge& e = loop.edges[place.edge];
+    const double span = e.t_end - e.t_start;
+    const double f = span != 0 ? std::clamp((place.t - e.t_start) / span, 0.0, 1.0) : 0.0;
+    const double pos = place.edge + f;
+    return pos >= n ? pos - n : pos;
+  }
+
+  // The pieces of boundary edges forward along a loop from a to b.
+  std::vector<OutlinePiece> range_pieces(const Item& it) const {
+    std::vector<OutlinePiece> result;
+    if (!it.full && distance(it.a.point, it.b.point) <= tol_) return result;
+    const Loop& loop = face_.loops[it.a.loop];
+    const int n = static_cast<int>(loop.edges.size());
+    const double pa = loop_position(it.a);
+    double pb = loop_position(it.b);
+    if (it.full || pb <= pa) pb += n;
+    const double chord = 1e-4 * face_.size;
+    for (int k = static_cast<int>(std::floor(pa)); k < pb; ++k) {
+      const double lo = std::max(pa, static_cast<double>(k)), hi = std::min(pb, k + 1.0);
+      if (hi - lo <= 1e-15) continue;
+      const int ei = k % n;
+      const BoundaryEdge& e = loop.edges[ei];
+      OutlinePiece piece;
+      piece.loop = it.a.loop;
+      piece.edge = ei;
+      piece.t_from = e.t_start + (lo - k) * (e.t_end - e.t_start);
+      piece.t_to = e.t_start + (hi - k) * (e.t_end - e.t_start);
+      piece.points.push_back(lo == k ? e.start : edge_point(e, piece.t_from).p);
+      const bool up = e.t_end >= e.t_start;
+      for (double t : sample_edge_parameters(e, chord)) {
+        const bool inside = up ? (t > piece.t_from && t < piece.t_to) : (t < piece.t_from && t > piece.t_to);
+        if (inside) piece.points.push_back(edge_point(e, t).p);
+      }
+      piece.points.push_back(hi == k + 1.0 ? e.end : edge_point(e, piece.t_to).p);
+      if (lo != k && k == static_cast<int>(std::floor(pa))) piece.points.front() = it.a.point;
+      if (hi != k + 1.0 && hi == pb) piece.points.back() = it.b.point;
+      result.push_back(std::move(piece));
+    }
+    return result;
+  }
+
+  // The corner type where a boundary edge ends (and the next starts) inside a range.
+  int joint_type(int loop, int edge_index) const {
+    const int n = static_cast<int>(face_.loops[loop].edges.size());
+    const auto it = corner_of_.find({loop, (edge_index + 1) % n});
+    return it == corner_of_.end() ? 2 : face_.corners[it->second].nc;
+  }
+
+  Flat flatten(const Outline& o) const {
+    Flat flat;
+    // Per piece: the arm of the cross it leaves its start along and arrives
+    // at its end along, where that end is a split's end on the boundary; a
+    // boundary piece leaves along arm 0 and arrives along arm nc (2 if smooth).
+    std::vector<int> arm_out, arm_in;
+    std::vector<int> bend;  // per piece: elements at its start when it starts at a split's bend, else -1
+    for (const Item& it : o.items) {
+      if (!it.split) {
+        for (OutlinePiece& piece : range_pieces(it)) {
+          flat.pieces.push_back(std::move(piece));
+          arm_out.push_back(0);
+          arm_in.push_back(-1);
+          bend.push_back(-1);
+        }
+        continue;
+      }
+      OutlinePiece first, second;
+      first.split = it.split_a;
+      first.reversed = it.reversed_a;
+      first.points = {it.a.point, it.middle};
+      second.split = it.split_b;
+      second.reversed = it.reversed_b;
+      second.points = {it.middle, it.b.point};
+      flat.pieces.push_back(first);
+      arm_out.push_back(it.arm_a);
+      arm_in.push_back(-1);
+      bend.push_back(-1);
+      flat.pieces.push_back(second);
+      arm_out.push_back(-1);
+      arm_in.push_back(it.arm_b);
+      bend.push_back(it.bend);
+    }
+    const std::size_t count = flat.pieces.size();
+    flat.start_type.assign(count, 2);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t prev = (i + count - 1) % count;
+      const OutlinePiece& a = flat.pieces[prev];
+      const OutlinePiece& b = flat.pieces[i];
+      if (bend[i] >= 0) {
+        flat.start_type[i] = bend[i];
+      } else if (a.split < 0 && b.split < 0) {
+        flat.start_type[i] = a.edge != b.edge || count == 1 ? joint_type(a.loop, a.edge) : 2;
+      } else {
+        // A split's end on the boundary: the arms between the two sides.
+        int nc = 2;
+        if (a.split < 0) {
+          BoundaryPlace place;
+          place.loop = a.loop;
+          place.edge = a.edge;
+          place.point = b.points.front();
+          const int ci = place_corner(place);
+          if (ci >= 0) nc = face_.corners[ci].nc;
+        }
+        flat.start_type[i] = (a.split < 0 ? nc : arm_in[prev]) - (b.split < 0 ? 0 : arm_out[i]);
+      }
+    }
+    return flat;
+  }
+
+  double piece_area(const OutlinePiece& piece, Vec2 ref) const {
+    if (piece.split >= 0 || piece.loop < 0) {
+      double a = 0.0;
+      for (std::size_t i = 0; i + 1 < piece.points.size(); ++i)
+        a += 0.5 * cross(piece.points[i] - ref, piece.points[i + 1] - piece.points[i]);
+      return a;
+    }
+    const BoundaryEdge& e = face_.loops[piece.loop].edges[piece.edge];
+    const Vec2 start = edge_point(e, piece.t_from).p, end = edge_point(e, piece.t_to).p;
+    return 0.5 * cross(piece.points.front() - ref, start - piece.points.front()) +
+           edge_area_integral(e, piece.t_from, piece.t_to, ref) + 0.5 * cross(end - ref, piece.points.back() - end);
+  }
+
+  Decomposition finish(const std::vector<Outline>& outlines) {
+    Decomposition d;
+    d.splits = splits_;
+    d.notes = notes_;
+    Pieces p = pieces();
+    std::map<int, int> unit_in;   // component -> floating unit
+    std::map<int, int> k_inside;  // component -> sum of the flow's k strictly inside
+    for (std::size_t m = 0; m < locations_.size(); ++m) {
+      const int comp = component_of(p, static_cast<int>(m));
+      if (comp >= 0) k_inside[comp] += flow_.singularities[m].k;
+    }
+    for (std::size_t u = 0; u < units_.size(); ++u) {
+      d.singularities.push_back({units_[u].p, units_[u].k, units_[u].fixed, units_[u].members});
+      if (!units_[u].fixed) unit_in[component_of(p, units_[u].members.front())] = static_cast<int>(u);
+    }
+    std::map<int, int> outline_count;
+    for (const Outline& o : outlines) ++outline_count[o.component];
+    double total = 0.0;
+    for (const Outline& o : outlines) {
+      if (outline_count[o.component] != 1)
+        throw std::runtime_error(face_.name + ": decomposition self-check failed: a block is not simply connected");
+      Block b = make_block(o);
+      int sum = 0;
+      for (const BlockCorner& c : b.corners) sum += 2 - c.type;
+      if (sum != 4 + k_inside[o.component]) {
+        throw std::runtime_error(face_.name + ": decomposition self-check failed: the corners of a block sum to " +
+                                 std::to_string(sum) + " quarter turns, its singularities need " +
+                                 std::to_string(4 + k_inside[o.component]));
+      }
+      const auto it = unit_in.find(o.component);
+      const bool convex =
+          std::all_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 1; });
+      if (it != unit_in.end()) {
+        b.singularity = it->second;
+        b.kind = convex && simple(o) && b.corners.size() <= 6 ? BlockKind::Polygon : BlockKind::Submap;
+        if (b.kind == BlockKind::Submap) {
+          d.fallback = true;
+          d.notes.push_back("a k = " + std::to_string(units_[it->second].k) +
+                            " singularity could be neither given a convex block nor fixed");
+        }
+      } else {
+        b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
+      }
+      total += b.area;
+      d.blocks.push_back(std::move(b));
+    }
+    if (std::abs(total - face_.area) > 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size) {
+      throw std::runtime_error(face_.name + ": decomposition self-check failed: the blocks' areas add up to " +
+                               std::to_string(total) + ", the face's is " + std::to_string(face_.area));
+    }
+    return d;
+  }
+
+  Block make_block(const Outline& o) const {
+    Flat flat = flatten(o);
+    Block b;
+    const std::size_t count = flat.pieces.size();
+    std::size_t first = 0;
+    while (first < count && flat.start_type[first] == 2) ++first;
+    if (first == count) first = 0;
+    const Vec2 ref = flat.pieces.empty() ? Vec2{} : flat.pieces.front().points.front();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = (first + k) % count;
+      const OutlinePiece& piece = flat.pieces[i];
+      if (flat.start_type[i] != 2) {
+        b.corners.push_back({piece.points.front(), flat.start_type[i]});
+        b.sides.emplace_back();
+      }
+      if (b.sides.empty()) b.sides.emplace_back();
+      b.sides.back().pieces.push_back(piece);
+      for (std::size_t j = 0; j + 1 < piece.points.size(); ++j) {
+        if (b.outline.empty() || distance(b.outline.back(), piece.points[j]) > tol_)
+          b.outline.push_back(piece.points[j]);
+      }
+      b.area += piece_area(piece, ref);
+    }
+    return b;
+  }
+
+  const FaceModel& face_;
+  const MedialAxis& axis_;
+  const MeshFlow& flow_;
+  DecompositionOptions options_;
+  BoundaryIndex index_;
+  double tol_;
+  std::map<std::pair<int, int>, int> corner_of_;
+  std::vector<Location> locations_;
+  std::vector<Unit> units_;
+  std::vector<int> unit_of_;
+  std::vector<std::vector<End>> ends_;
+  std::vector<ConcavePoint> concave_;
+  std::vector<Cut> cuts_;
+  std::vector<Split> splits_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace
+
+const char* split_reason_name(SplitReason reason) {
+  switch (reason) {
+    case SplitReason::Resolve: return "resolve";
+    case SplitReason::ConcaveCorner: return "concave_corner";
+    case SplitReason::Fix: return "fix";
+    case SplitReason::Connect: return "connect";
+  }
+  return "unknown";
+}
+
+Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
+                        const DecompositionOptions& options) {
+  return Decomposer(face, axis, flow, options).run();
+}
+
+}  // namespace mm

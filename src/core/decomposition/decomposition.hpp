@@ -1,0 +1,95 @@
+#pragma once
+// Block decomposition around the mesh singularities (the paper's section 4).
+// Every split is a pair of medial radii (or the radii of a medial vertex), so
+// the blocks are the pieces of the medial axis left between the splits, each
+// with the part of the face its discs sweep: logically convex polygons that
+// hold one floating singularity, and submappable regions everywhere else.
+#include <string>
+#include <vector>
+
+#include "boundary/face_model.hpp"
+#include "medial/medial_axis.hpp"
+#include "singularity/merge.hpp"
+#include "singularity/mesh_flow.hpp"
+
+namespace mm {
+
+struct DecompositionOptions {
+  bool merge = true;         // merge close singularities first (sections 4.3 and 4.4)
+  MergeTolerance tolerance;  // how close is close
+};
+
+enum class SplitReason {
+  Resolve,        // between a singularity and a neighbouring feature (n = 0 or a convex n = 1)
+  ConcaveCorner,  // along an arm of a concave corner's cross
+  Fix,            // through a singularity that could not float
+  Connect,        // makes a multiply connected region simply connected (section 4.6)
+};
+const char* split_reason_name(SplitReason reason);
+
+// A split: boundary point, medial point, boundary point (or, for a fixed
+// medial vertex, one radius from the boundary to the vertex).
+struct Split {
+  std::vector<Vec2> polyline;
+  SplitReason reason = SplitReason::Resolve;
+};
+
+// A piece of a block's outline: part of one boundary edge (t_from to t_to,
+// in the outline's direction) or a split run forwards or backwards.
+struct OutlinePiece {
+  int split = -1;  // >= 0: index into Decomposition::splits
+  bool reversed = false;
+  int loop = -1;  // else this boundary edge
+  int edge = -1;
+  double t_from = 0.0;
+  double t_to = 0.0;
+  std::vector<Vec2> points;  // sampled, in the outline's direction
+};
+
+// A logical corner: where the outline turns by a multiple of a quarter turn.
+// type is the number of elements the block has there: 1 convex, 0 a cusp,
+// 3 or 4 reflex (2, straight on, is no corner).
+struct BlockCorner {
+  Vec2 p;
+  int type = 1;
+};
+
+struct BlockSide {
+  std::vector<OutlinePiece> pieces;
+};
+
+enum class BlockKind { Polygon, Submap };
+
+struct Block {
+  BlockKind kind = BlockKind::Submap;
+  std::vector<BlockCorner> corners;  // counter-clockwise; side i runs from corner i to corner i + 1
+  std::vector<BlockSide> sides;      // one side with the whole outline when there is no corner
+  std::vector<Vec2> outline;         // closed, counter-clockwise, first point not repeated
+  double area = 0.0;
+  int singularity = -1;  // index into Decomposition::singularities: the one floating inside
+};
+
+// A singularity after merging; fixed ones are corners of blocks, not inside one.
+struct DecomposedSingularity {
+  Vec2 p;
+  int k = 0;
+  bool fixed = false;
+  std::vector<int> members;  // indices into MeshFlow::singularities
+};
+
+struct Decomposition {
+  std::vector<Split> splits;
+  std::vector<Block> blocks;
+  std::vector<DecomposedSingularity> singularities;
+  bool fallback = false;           // some singularity could not be given its polygon
+  std::vector<std::string> notes;  // what the process had to do, for the user
+};
+
+// Decomposes the face. Always returns a decomposition that tiles the face
+// (checked: block areas add up to the face's, every block's corner types
+// close up with the singularities it holds); throws std::runtime_error naming
+// the face and the check if that self-check ever fails.
+Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
+                        const DecompositionOptions& options);
+
+}  // namespace mm
