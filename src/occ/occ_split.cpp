@@ -97,10 +97,22 @@ bool nearest_on_boundary(const TopoDS_Face& face, const gp_Pnt& p, double snap, 
   return found;
 }
 
-// The nearest point of another split to p, if within snap.
+// The nearest point of another split to p, if within snap, preferring the end
+// of a split so that several splits meeting at a point all end exactly there.
 bool nearest_on_splits(const Polylines& splits, std::size_t own, Vec2 p, double snap, Vec2& nearest) {
   double best = snap;
   bool found = false;
+  for (std::size_t s = 0; s < splits.size(); ++s) {
+    if (s == own || splits[s].empty()) continue;
+    for (Vec2 end : {splits[s].front(), splits[s].back()}) {
+      if (distance(p, end) <= best) {
+        best = distance(p, end);
+        nearest = end;
+        found = true;
+      }
+    }
+  }
+  if (found) return true;
   for (std::size_t s = 0; s < splits.size(); ++s) {
     if (s == own) continue;
     for (std::size_t i = 0; i + 1 < splits[s].size(); ++i) {

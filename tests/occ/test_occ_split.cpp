@@ -158,6 +158,35 @@ TEST(Split, EndsShortOfTheBoundaryOrASplitOnALargeFaceStillCut) {
   EXPECT_NE(block_at(blocks, big.model.frame, {1000, 0}), nullptr);
 }
 
+// The triangle's k = -1 decomposition: three splits from the midpoints of its
+// sides to its centre, where their ends miss each other by 1e-9 of the size
+// of a part 1000 times larger, beyond OCC's tolerance.
+TEST(Split, ThreeSplitsMeetingAtAPointGiveThreeBlocks) {
+  const Face triangle = scaled(reference("triangle"), 1000.0);
+  const auto& corners = triangle.model.corners;
+  ASSERT_EQ(corners.size(), 3u);
+  const Vec2 centre = (corners[0].position + corners[1].position + corners[2].position) / 3.0;
+  const double gap = 1e-9 * triangle.model.size;
+  ASSERT_GT(gap, 1e-7);
+  Polylines splits;
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 midpoint = 0.5 * (corners[i].position + corners[(i + 1) % 3].position);
+    const Vec2 miss = gap * Vec2{std::cos(2.0 * i), std::sin(2.0 * i)};
+    splits.push_back({midpoint, centre + miss});
+  }
+  const auto blocks = split_face(triangle.occ, triangle.model.frame, splits);
+  expect_blocks(blocks, triangle.model, std::vector<double>(3, triangle.model.area / 3));
+  // One common vertex near the centre, and each block a quadrilateral.
+  const std::vector<Vec2> first = vertices_2d(blocks[0], triangle.model.frame);
+  const Vec2 meet = *std::min_element(first.begin(), first.end(),
+                                      [&](Vec2 a, Vec2 b) { return distance(a, centre) < distance(b, centre); });
+  EXPECT_LT(distance(meet, centre), 2 * gap);
+  for (const TopoDS_Face& block : blocks) {
+    EXPECT_EQ(vertices_2d(block, triangle.model.frame).size(), 4u);
+    EXPECT_TRUE(has_vertex(block, triangle.model.frame, meet, 0.0));
+  }
+}
+
 // The plate's hole and outer square from its boundary model; the radial
 // splits from the hole to the middle of each side.
 Polylines plate_splits(const FaceModel& plate) {
