@@ -30,10 +30,11 @@
 #include <filesystem>
 #include <fstream>
 #include <gp_Trsf2d.hxx>
-#include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "occ/occ_face.hpp"
+#include "occ/silenced_stdout.hpp"
 
 namespace mm {
 namespace {
@@ -224,17 +225,6 @@ std::string planar_face_list(const TopTools_IndexedMapOfShape& faces) {
   return list.empty() ? "none" : list;
 }
 
-// OCC's BREP reader reports problems on std::cout; the CLI's stdout is for results.
-class SilencedStdout {
- public:
-  SilencedStdout() : saved_(std::cout.rdbuf(sink_.rdbuf())) {}
-  ~SilencedStdout() { std::cout.rdbuf(saved_); }
-
- private:
-  std::ostringstream sink_;
-  std::streambuf* saved_;
-};
-
 }  // namespace
 
 TopoDS_Shape read_shape(const std::string& path) {
@@ -274,32 +264,36 @@ FaceModel face_model_from_occ(const TopoDS_Face& face, const std::string& name) 
   }
 }
 
-std::vector<FaceModel> read_face_models(const std::string& path, const std::vector<int>& face_indices) {
-  const TopoDS_Shape shape = read_shape(path);
+TopoDS_Face face_of_shape(const TopoDS_Shape& shape, std::optional<int> face_index, const std::string& path) {
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(shape, TopAbs_FACE, faces);
   if (faces.Extent() == 0) throw InputError(path + ": file holds no face");
-  std::vector<int> chosen = face_indices;
-  if (chosen.empty()) {
+  if (!face_index) {
     if (faces.Extent() > 1) {
       throw InputError(path + ": file holds " + std::to_string(faces.Extent()) +
                        " faces; choose one with --face N (planar faces: " + planar_face_list(faces) + ")");
     }
-    chosen.push_back(1);
+    face_index = 1;
   }
+  if (*face_index < 1 || *face_index > faces.Extent()) {
+    throw InputError(path + ": face " + std::to_string(*face_index) + " is out of range (the file holds " +
+                     std::to_string(faces.Extent()) + " faces)");
+  }
+  return TopoDS::Face(faces(*face_index));
+}
+
+std::vector<FaceModel> read_face_models(const std::string& path, const std::vector<int>& face_indices) {
+  const TopoDS_Shape shape = read_shape(path);
+  if (face_indices.empty()) return {face_model_from_occ(face_of_shape(shape, std::nullopt, path), path + ": face 1")};
   std::vector<FaceModel> models;
-  for (int index : chosen) {
-    if (index < 1 || index > faces.Extent()) {
-      throw InputError(path + ": face " + std::to_string(index) + " is out of range (the file holds " +
-                       std::to_string(faces.Extent()) + " faces)");
-    }
+  for (int index : face_indices) {
     const std::string name = path + ": face " + std::to_string(index);
-    models.push_back(face_model_from_occ(TopoDS::Face(faces(index)), name));
+    models.push_back(face_model_from_occ(face_of_shape(shape, index, path), name));
   }
   return models;
 }
 
-FaceModel face_model_from_brep_string(const std::string& brep, const std::string& name) {
+TopoDS_Face face_from_brep_string(const std::string& brep, const std::string& name) {
   TopoDS_Shape shape;
   try {
     std::istringstream stream(brep);
@@ -315,7 +309,11 @@ FaceModel face_model_from_brep_string(const std::string& brep, const std::string
   const TopoDS_Face face = TopoDS::Face(it.Current());
   it.Next();
   if (it.More()) throw InputError(name + ": BREP text holds more than one face");
-  return face_model_from_occ(face, name);
+  return face;
+}
+
+FaceModel face_model_from_brep_string(const std::string& brep, const std::string& name) {
+  return face_model_from_occ(face_from_brep_string(brep, name), name);
 }
 
 }  // namespace mm
