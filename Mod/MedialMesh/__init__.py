@@ -69,6 +69,33 @@ def make_analysis_object(doc, obj, subname, merge=0.75):
     return make(doc, obj, subname, merge=merge)
 
 
+def decompose_face(face, merge=None, mesh_size=None, name="face"):
+    """Return the block decomposition of a planar face, in 3-D.
+
+    The result (MedialMesh.decomposition.FaceDecomposition) has splits (a
+    Part.Edge per straight split, a Part.Wire per bent one, lying on the
+    face), blocks (kind 'polygon' or 'submap', sides, outline as a closed
+    Part.Wire, area, the singularity point and k it holds or None, corners
+    with their types), fixed (singularities at block corners), singularities
+    (all, after merging: point, k), fallback, notes and placement (the face's
+    2-D frame). merge, mesh_size: as for analyse_face; both None: unmerged.
+    Raises InputError naming the face and the problem.
+    """
+    from .decomposition import decompose_face as decompose
+
+    return decompose(face, merge=merge, mesh_size=mesh_size, name=name)
+
+
+def make_decomposition_object(doc, obj, subname, merge=0.75):
+    """Create, compute and return the parametric decomposition of face
+    `subname` ('Face3') of document object `obj`: a Part::FeaturePython whose
+    shape is the splits, with a Sketch of them on the face's plane, that
+    recomputes when the face or its MergeFactor (0: no merging) changes."""
+    from .objects import make_decomposition_object as make
+
+    return make(doc, obj, subname, merge=merge)
+
+
 def to_3d(frame, x, y):
     """Map a point of a face's 2-D frame (from boundary_model or medial_axis) to 3-D."""
     return tuple(o + x * a + y * b for o, a, b in zip(frame["origin"], frame["x_dir"], frame["y_dir"]))

@@ -28,8 +28,42 @@ def is_planar(face):
         return False
 
 
-class CommandAnalyse:
+class FaceCommand:
+    """A command that makes one object per selected planar face, in one
+    transaction; subclasses say what to make and what to tell the user."""
+
+    name = ""  # the transaction's name, and the command's in messages
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in selected_faces())
+
+    def Activated(self):
+        # Runs from a toolbar: nothing may escape into FreeCAD.
+        try:
+            self.run_on_selection()
+        except Exception as error:
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
+
+    def run_on_selection(self):
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction(self.name)
+        made = []
+        for obj, subname, face in selected_faces():
+            if not is_planar(face):
+                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar\n")
+                continue
+            made.append(self.make(doc, obj, subname))
+        doc.commitTransaction()
+        for obj in made:
+            if obj.Status == "ok":
+                FreeCAD.Console.PrintMessage(f"MedialMesh: {obj.Label}: {self.summary(obj)}\n")
+        doc.recompute()
+
+
+class CommandAnalyse(FaceCommand):
     """Analyse the selected planar faces: medial axis, flow types, singularities."""
+
+    name = "Analyse face"
 
     def GetResources(self):
         return {
@@ -39,32 +73,34 @@ class CommandAnalyse:
             "and their mesh singularities with their k",
         }
 
-    def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in selected_faces())
+    def make(self, doc, obj, subname):
+        return objects.make_analysis_object(doc, obj, subname)
 
-    def Activated(self):
-        # Runs from a toolbar: nothing may escape into FreeCAD.
-        try:
-            self.analyse_selection()
-        except Exception as error:
-            FreeCAD.Console.PrintError(f"MedialMesh: Analyse failed: {error!r}\n")
+    def summary(self, obj):
+        return (f"{len(obj.SingularityK)} singularities, "
+                f"sum of k {obj.SumK} (every quad mesh: {obj.PredictedSumK})")
 
-    def analyse_selection(self):
-        doc = FreeCAD.ActiveDocument
-        doc.openTransaction("Analyse face")
-        made = []
-        for obj, subname, face in selected_faces():
-            if not is_planar(face):
-                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar\n")
-                continue
-            made.append(objects.make_analysis_object(doc, obj, subname))
-        doc.commitTransaction()
-        for obj in made:
-            if obj.Status == "ok":
-                FreeCAD.Console.PrintMessage(
-                    f"MedialMesh: {obj.Label}: {len(obj.SingularityK)} singularities, "
-                    f"sum of k {obj.SumK} (every quad mesh: {obj.PredictedSumK})\n")
-        doc.recompute()
+
+class CommandDecompose(FaceCommand):
+    """Decompose the selected planar faces into blocks: splits and a Sketch of them."""
+
+    name = "Decompose face"
+
+    def GetResources(self):
+        return {
+            "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_Decompose.svg"),
+            "MenuText": "Decompose face",
+            "ToolTip": "Split the selected planar faces into blocks for quad meshing, "
+            "each holding at most one singularity; the splits also go into a Sketch on the face",
+        }
+
+    def make(self, doc, obj, subname):
+        return objects.make_decomposition_object(doc, obj, subname)
+
+    def summary(self, obj):
+        return (f"{obj.SplitCount} splits, {obj.BlockCount} blocks ({obj.PolygonBlocks} polygon, "
+                f"{obj.SubmapBlocks} submapped), {obj.FixedCount} fixed singularities")
 
 
 FreeCADGui.addCommand("MedialMesh_Analyse", CommandAnalyse())
+FreeCADGui.addCommand("MedialMesh_Decompose", CommandDecompose())

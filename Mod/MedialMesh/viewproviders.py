@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""How an analysis object looks: the medial axis with its edges coloured by
-flow type, and the singularities as dots coloured by sign with their k."""
+"""How the objects look: an analysis as the medial axis with its edges
+coloured by flow type and the singularities as dots coloured by sign with
+their k; a decomposition as its splits, with its Sketch as a child."""
 
 import os
 
 import FreeCAD
 from pivy import coin
 
-from . import analysis
+from . import analysis, decomposition, objects
 
 ICON_FOLDER = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                            "Resources", "icons")
@@ -76,3 +77,52 @@ class ViewProviderMedialAnalysis:
     def __setstate__(self, state):
         return None
 
+
+class ViewProviderMedialDecomposition:
+    """Proxy of the view provider of a MedialMesh decomposition object."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+        vobj.LineWidth = 4
+        vobj.LineColor = decomposition.SPLIT_COLOUR
+        vobj.PointSize = 1
+
+    def attach(self, vobj):
+        self.object = vobj.Object
+        # Lines lying exactly on a face fight it for depth and show in pieces;
+        # lifted a hair off its front, as the Sketcher lifts what it edits,
+        # they show whole.
+        self.lift = coin.SoTranslation()
+        vobj.RootNode.insertChild(self.lift, 0)
+        self.update_lift(vobj.Object)
+
+    def updateData(self, obj, prop):
+        if prop == "Shape":
+            self.update_lift(obj)
+
+    def update_lift(self, obj):
+        if not hasattr(self, "lift"):
+            return
+        try:
+            face = objects.linked_face(obj)
+            lift = face.normalAt(0, 0) * (1e-3 * face.BoundBox.DiagonalLength)
+        except Exception:  # no face (Status says why): nothing drawn to lift
+            lift = FreeCAD.Vector()
+        self.lift.translation = (lift.x, lift.y, lift.z)
+
+    def onChanged(self, vobj, prop):
+        pass
+
+    def getIcon(self):
+        return os.path.join(ICON_FOLDER, "MedialMesh_Decompose.svg")
+
+    def claimChildren(self):
+        # The tree asks during restores and deletions too: never fail here.
+        sketch = getattr(getattr(self, "object", None), "Sketch", None)
+        return [sketch] if sketch else []
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
