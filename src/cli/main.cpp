@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "occ/occ_reader.hpp"
+#include "occ/occ_split_io.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
 #include "report/medial_report.hpp"
@@ -22,6 +23,7 @@ constexpr const char* kUsage =
     "       medialmesh medial FILE [--face N] [--json] [--svg OUT.svg]\n"
     "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
     "       medialmesh decompose FILE [--face N] [--merge F | --merge-size H | --no-merge] [--json] [--svg OUT.svg]\n"
+    "                            [--blocks OUT.brep|OUT.step]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
     "--face takes a number or a comma-separated list (info only).\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
@@ -35,6 +37,7 @@ struct Options {
   bool json = false;
   std::string output;
   std::string svg;
+  std::string blocks;
   std::optional<mm::MergeTolerance> merge;
   bool no_merge = false;
 };
@@ -97,6 +100,8 @@ Options parse(int argc, char** argv) {
       o.output = value();
     } else if (a == "--svg") {
       o.svg = value();
+    } else if (a == "--blocks") {
+      o.blocks = value();
     } else if (a == "--merge" && (i + 1 >= args.size() || !parse_number(args[i + 1]))) {
       o.merge = mm::MergeTolerance{};
     } else if (a == "--merge" || a == "--merge-size") {
@@ -121,7 +126,9 @@ Options parse(int argc, char** argv) {
   if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose")
     throw UsageError{"--merge belongs to the singularities and decompose commands"};
   if (o.merge && o.no_merge) throw UsageError{"--merge and --no-merge exclude each other"};
-  if (o.command == "decompose" && !o.json && o.svg.empty()) throw UsageError{"decompose needs --json or --svg OUT.svg"};
+  if (o.command == "decompose" && !o.json && o.svg.empty() && o.blocks.empty())
+    throw UsageError{"decompose needs --json, --svg OUT.svg or --blocks OUT.brep"};
+  if (!o.blocks.empty() && o.command != "decompose") throw UsageError{"--blocks belongs to the decompose command"};
   return o;
 }
 
@@ -167,6 +174,12 @@ void run_decompose(const Options& o, const mm::FaceModel& face) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);
     mm::draw_decomposition(canvas, face, axis, decomposition);
     canvas.save(o.svg);
+  }
+  if (!o.blocks.empty()) {
+    // The face split along the splits by OCC into its block faces.
+    std::vector<std::vector<mm::Vec2>> lines;
+    for (const mm::Split& s : decomposition.splits) lines.push_back(s.polyline);
+    mm::write_blocks_brep(o.file, o.faces.empty() ? 0 : o.faces.front(), lines, o.blocks);
   }
 }
 

@@ -41,12 +41,16 @@ namespace mm {
 
 namespace {
 
-constexpr double kNoCut = 1e300;
+// A block that fails its self-check: the process tries once more before giving up.
+struct SelfCheckFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct Cut {
   int edge = -1;  // an edge cut at position s (point index plus fraction)...
   double s = 0.0;
-  int vertex = -1;  // ...or a vertex cut (a fixed junction)
+  int vertex = -1;      // ...or a vertex cut (a fixed junction)
+  double origin = 0.0;  // s where it was placed, before refinement
   MedialPoint point;
   PointFlow behind, ahead;  // the flow just before and after s along the edge
   SplitReason reason = SplitReason::Resolve;
@@ -109,7 +113,8 @@ struct Item {
   bool full = false;
   // split: boundary place a -> interior point -> boundary place b
   Vec2 middle;
-  int bend = 2;  // elements at the interior point
+  int bend = 2;             // elements at the interior point
+  int virtual_corners = 0;  // range: convex corners of a singularity fixed onto it
   int arm_a = 1, arm_b = 1;
   int split_a = -1, split_b = -1;  // the splits the two halves lie on
   bool reversed_a = false, reversed_b = false;
@@ -134,17 +139,48 @@ class Decomposer {
     find_concave_points();
   }
 
+  // The paper's process; should a block fail its self-check, the whole face
+  // again with every singularity that can be fixed fixed (the paper's
+  // always-possible decomposition into submappable regions).
   Decomposition run() {
-    resolve_neighbours();
-    fix_unresolved();
-    std::vector<Outline> outlines;
-    for (int round = 0;; ++round) {
-      outlines = walk_outlines();
-      if (!fix_invalid_polygons(outlines) || round > static_cast<int>(units_.size())) break;
+    try {
+      return attempt(false);
+    } catch (const SelfCheckFailure& first) {
+      try {
+        Decomposition d = attempt(true);
+        d.fallback = true;
+        d.notes.push_back(std::string("the process's blocks failed a self-check (") + first.what() +
+                          "); every singularity that can be fixed was fixed instead");
+        return d;
+      } catch (const SelfCheckFailure&) {
+        throw std::runtime_error(first.what());
+      }
     }
-    connect_regions();
-    outlines = walk_outlines();
-    return finish(outlines);
+  }
+
+  Decomposition attempt(bool fix_all) {
+    // A group of net k = 0 acts as a regular node only while no cut parts
+    // its members; one that gets parted is taken apart and the process redone.
+    for (;;) {
+      cuts_.clear();
+      boundary_fixed_.clear();
+      notes_.clear();
+      for (Unit& u : units_) u.fixed = false;
+      if (fix_all) {
+        for (std::size_t u = 0; u < units_.size(); ++u) {
+          if (floating(static_cast<int>(u)) && boundary_fixable(static_cast<int>(u))) fix(static_cast<int>(u));
+        }
+      }
+      resolve_neighbours();
+      fix_unresolved();
+      std::vector<Outline> outlines;
+      for (int round = 0;; ++round) {
+        outlines = walk_outlines();
+        if (!fix_invalid_polygons(outlines) || round > static_cast<int>(units_.size())) break;
+      }
+      connect_regions();
+      if (!take_apart_parted_groups()) return finish(walk_outlines());
+    }
   }
 
  private:
@@ -180,20 +216,57 @@ class Decomposer {
     return s;
   }
 
+  // One unit per group of merged singularities, net k = 0 groups included:
+  // those need no block of their own, but no cut may part them.
   void make_units() {
-    if (options_.merge) {
-      for (const SingularityGroup& g : merge_singularities(flow_.singularities, options_.tolerance)) {
-        units_.push_back({g.k, g.p, g.members});
-      }
-    } else {
-      for (std::size_t i = 0; i < flow_.singularities.size(); ++i) {
-        units_.push_back({flow_.singularities[i].k, flow_.singularities[i].p, {static_cast<int>(i)}});
-      }
+    std::vector<SingularityGroup> groups;
+    if (options_.merge) groups = group_singularities(flow_.singularities, options_.tolerance);
+    units_.clear();
+    for (SingularityGroup& g : groups) {
+      if (g.members.size() > 1 && !taken_apart_.count(g.members.front())) units_.push_back({g.k, g.p, g.members});
     }
+    unit_of_.assign(flow_.singularities.size(), -1);
+    for (const Unit& u : units_) {
+      for (int m : u.members) unit_of_[m] = 0;
+    }
+    for (std::size_t i = 0; i < flow_.singularities.size(); ++i) {
+      if (unit_of_[i] < 0 && flow_.singularities[i].k != 0)
+        units_.push_back({flow_.singularities[i].k, flow_.singularities[i].p, {static_cast<int>(i)}});
+    }
+    std::sort(units_.begin(), units_.end(), [](const Unit& a, const Unit& b) { return a.members[0] < b.members[0]; });
     unit_of_.assign(flow_.singularities.size(), -1);
     for (std::size_t u = 0; u < units_.size(); ++u) {
       for (int m : units_[u].members) unit_of_[m] = static_cast<int>(u);
     }
+  }
+
+  // Whether a cut at p could part the members of a group: p lies between two of them.
+  bool inside_a_group(Vec2 p) const {
+    for (const Unit& u : units_) {
+      for (std::size_t i = 0; i < u.members.size(); ++i) {
+        for (std::size_t j = i + 1; j < u.members.size(); ++j) {
+          const Vec2 a = flow_.singularities[u.members[i]].p, b = flow_.singularities[u.members[j]].p;
+          const double reach = distance(a, b) + tol_;
+          if (distance(p, a) <= reach && distance(p, b) <= reach) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // Groups of net k = 0 whose members ended up in different pieces: taken
+  // apart for the next attempt. Returns whether there were any.
+  bool take_apart_parted_groups() {
+    Pieces p = pieces();
+    bool any = false;
+    for (const Unit& u : units_) {
+      if (u.k != 0) continue;
+      std::set<int> comps;
+      for (int m : u.members) comps.insert(component_of(p, m));
+      if (comps.size() > 1) taken_apart_.insert(u.members.front()), any = true;
+    }
+    if (any) make_units();
+    return any;
   }
 
   Vec2 end_direction(int e, bool at_start) const {
@@ -331,23 +404,79 @@ class Decomposer {
     return std::any_of(cuts_.begin(), cuts_.end(), [&](const Cut& c) { return c.vertex == v; });
   }
 
+  bool withdrawn(int e, double s) const { return withdrawn_.count({e, std::lround(s * 1e6)}) > 0; }
+
   void cut_edge_at_point(int e, int i, SplitReason reason) {
-    if (cut_at(e, i)) return;
+    if (cut_at(e, i) || (reason != SplitReason::Connect && withdrawn(e, i))) return;
     Cut c;
     c.edge = e;
-    c.s = i;
+    c.s = c.origin = i;
     c.point = axis_.edges[e].points[i];
     c.behind = c.ahead = flow_.points[e][i];
     c.reason = reason;
+    refine(c);
     cuts_.push_back(c);
+  }
+
+  // The exact medial point near a cut's polyline point where the medial
+  // angle is nearest the ideal of its flow type (pi for n = 0, pi / 2 for
+  // n = 1), found by golden-section search on the exact axis.
+  void refine(Cut& c) const {
+    const int n = std::abs(c.behind.q);
+    if (n > 1) return;
+    const double ideal = n == 0 ? kPi : 0.5 * kPi;
+    const auto& pts = axis_.edges[c.edge].points;
+    const int i = static_cast<int>(c.s);
+    const auto exact = [&](double s) -> std::optional<MedialPoint> {
+      const int j = std::clamp(static_cast<int>(std::floor(s)), 0, point_count(c.edge) - 2);
+      const Vec2 guess = pts[j].p + (s - j) * (pts[j + 1].p - pts[j].p);
+      const Bisected b = bisect(index_, guess, pts[i].left, pts[i].right);
+      if (!b.converged || b.a.corner >= 0 || b.b.corner >= 0) return std::nullopt;
+      if (distance(b.p, guess) > distance(pts[j].p, pts[j + 1].p)) return std::nullopt;
+      return MedialPoint{b.p, b.r, b.a, b.b};
+    };
+    const auto error = [&](double s) {
+      const auto m = exact(s);
+      return m ? std::abs(medial_angle(*m) - ideal) : 1e300;
+    };
+    if (std::abs(medial_angle(c.point) - ideal) < 1e-9) return;
+    const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+    double lo = std::max(0.0, c.s - 0.5), hi = std::min(point_count(c.edge) - 1.0, c.s + 0.5);
+    // Never across another feature of the edge.
+    const auto keep_apart = [&](double mark) {
+      if (mark > c.s) hi = std::min(hi, mark - 1e-3);
+      if (mark < c.s) lo = std::max(lo, mark + 1e-3);
+    };
+    for (const Location& loc : locations_) {
+      if (loc.edge == c.edge) keep_apart(loc.s);
+    }
+    for (const ConcavePoint& cp : concave_) {
+      if (cp.edge == c.edge) keep_apart(cp.s);
+    }
+    for (const Cut& other : cuts_) {
+      if (other.edge == c.edge) keep_apart(other.s);
+    }
+    if (!(hi > lo)) return;
+    double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
+    double f1 = error(x1), f2 = error(x2);
+    for (int it = 0; it < 40; ++it) {
+      if (f1 < f2) {
+        hi = x2, x2 = x1, f2 = f1, x1 = hi - golden * (hi - lo), f1 = error(x1);
+      } else {
+        lo = x1, x1 = x2, f1 = f2, x2 = lo + golden * (hi - lo), f2 = error(x2);
+      }
+    }
+    const double best = 0.5 * (lo + hi);
+    if (error(best) >= std::abs(medial_angle(c.point) - ideal)) return;
+    if (const auto m = exact(best)) c.point = *m, c.s = best;
   }
 
   // Returns whether the cut is new.
   bool cut_concave(const ConcavePoint& cp) {
-    if (cut_at(cp.edge, cp.s)) return false;
+    if (cut_at(cp.edge, cp.s) || withdrawn(cp.edge, cp.s)) return false;
     Cut c;
     c.edge = cp.edge;
-    c.s = cp.s;
+    c.s = c.origin = cp.s;
     c.point = cp.point;
     c.behind = c.ahead = cp.flow;
     c.reason = SplitReason::ConcaveCorner;
@@ -358,6 +487,41 @@ class Decomposer {
   // Cuts through a unit's members: they become corners of blocks. Only
   // switches on edges and junctions can be fixed (a finite contact's k
   // belongs to the disc sector round it, which no cut can take from it).
+  // Whether fixing the unit may move a finite contact's singularity onto
+  // its arc: -k convex corners on the touched arc instead of a node inside
+  // (what mapped meshing does with a fillet or a round end).
+  bool boundary_fixable(int u) const {
+    for (int m : units_[u].members) {
+      const Location& loc = locations_[m];
+      if (loc.vertex < 0) continue;
+      const MedialVertex& v = axis_.vertices[loc.vertex];
+      const bool junction = v.kind == MedialVertexKind::Junction && v.edges.size() >= 2;
+      const bool contact = v.kind == MedialVertexKind::FiniteContact && flow_.singularities[m].k < 0;
+      if (!junction && !contact) return false;
+    }
+    return true;
+  }
+
+  // At a vertex fixed onto the boundary, the index (into ends_[v]) of the end
+  // after which the widest touched arc lies.
+  int widest_gap(int v) const {
+    const auto& list = ends_[v];
+    int best = 0;
+    double widest = -1.0;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const End& x = list[k];
+      const End& y = list[(k + 1) % list.size()];
+      const auto& xp = axis_.edges[x.edge].points;
+      const auto& yp = axis_.edges[y.edge].points;
+      const BoundaryPlace& a = x.at_start ? xp.front().left : xp.back().right;
+      const BoundaryPlace& b = y.at_start ? yp.front().right : yp.back().left;
+      double span = loop_position(b) - loop_position(a);
+      if (span <= 0) span += static_cast<double>(face_.loops[a.loop].edges.size());
+      if (span > widest) widest = span, best = static_cast<int>(k);
+    }
+    return best;
+  }
+
   bool fixable(int u) const {
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
@@ -372,6 +536,10 @@ class Decomposer {
     units_[u].fixed = true;
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
+      if (loc.vertex >= 0 && axis_.vertices[loc.vertex].kind == MedialVertexKind::FiniteContact) {
+        boundary_fixed_[loc.vertex] -= flow_.singularities[m].k;
+        continue;
+      }
       if (loc.vertex >= 0) {
         if (vertex_cut(loc.vertex)) continue;
         Cut c;
@@ -409,7 +577,7 @@ class Decomposer {
   std::vector<std::vector<Mark>> edge_marks() const {
     std::vector<std::vector<Mark>> marks(axis_.edges.size());
     for (std::size_t m = 0; m < locations_.size(); ++m) {
-      if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && !units_[unit_of_[m]].fixed)
+      if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && floating(unit_of_[m]))
         marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
     }
     for (std::size_t i = 0; i < concave_.size(); ++i) {
@@ -425,9 +593,12 @@ class Decomposer {
     return marks;
   }
 
+  // A unit that needs a block of its own and has not been fixed.
+  bool floating(int u) const { return units_[u].k != 0 && !units_[u].fixed; }
+
   int vertex_unit(int v) const {
     for (std::size_t m = 0; m < locations_.size(); ++m) {
-      if (locations_[m].vertex == v && unit_of_[m] >= 0 && !units_[unit_of_[m]].fixed) return unit_of_[m];
+      if (locations_[m].vertex == v && unit_of_[m] >= 0 && floating(unit_of_[m])) return unit_of_[m];
     }
     return -1;
   }
@@ -511,12 +682,24 @@ class Decomposer {
 
   // The best permitted split on the path: n = 0 anywhere; n = 1 only where
   // its bend is convex for the unit and the feature is no singularity.
-  std::optional<std::pair<int, int>> best_cut(const std::vector<Step>& path, bool convex_n1_allowed) const {
+  // The best permitted split on the path, and its flow type. An n = 1
+  // split leaves a reflex corner beyond it, so it needs no singularity there
+  // that must float (none at all, or, for_anchor, none that cannot be fixed).
+  struct Chosen {
+    int edge, point, n;
+  };
+  // Among equals, a point on the way to more of the unit's other unresolved
+  // neighbours is better: one split there resolves them all.
+  std::optional<Chosen> best_cut(const std::vector<Step>& path, bool convex_n1_allowed, bool for_anchor = false,
+                                 const std::vector<const Neighbour*>& others = {}) const {
     double length = 0.0;
     for (const Step& st : path) length += arc(st.edge, st.from, st.to);
-    using Score = std::tuple<int, int, int, double>;
-    std::optional<Score> best;
-    std::pair<int, int> where{-1, -1};
+    using Score = std::tuple<int, int, int, int, double>;
+    struct Candidate {
+      Score score;
+      int edge, point, dir;
+    };
+    std::vector<Candidate> candidates;
     double walked = 0.0;
     for (const Step& st : path) {
       const auto& pts = axis_.edges[st.edge].points;
@@ -526,18 +709,86 @@ class Decomposer {
         const PointFlow& pf = flow_.points[st.edge][i];
         if (pf.left_corner >= 0 || pf.right_corner >= 0) continue;
         if (distance(pts[i].left.point, pts[i].right.point) < 1e-6 * face_.size) continue;
+        if (inside_a_group(pts[i].p)) continue;
         const int n = std::abs(pf.q);
         if (n > 1) continue;
         if (n == 1 && (!convex_n1_allowed || bend_for(st.forward(), pf.q) != 1)) continue;
         const double at = walked + arc(st.edge, st.from, i);
         const bool outer = at < 0.1 * length || at > 0.9 * length;
-        const Score score{n, static_cast<int>(pf.deviation / 0.035), outer ? 1 : 0, std::abs(at - 0.5 * length)};
-        if (!best || score < *best) best = score, where = {st.edge, i};
+        int shared = 0;
+        for (const Neighbour* other : others) shared += on_path(other->path, st.edge, i) ? 1 : 0;
+        candidates.push_back(
+            {{n, -shared, static_cast<int>(pf.deviation / 0.035), outer ? 1 : 0, std::abs(at - 0.5 * length)},
+             st.edge,
+             i,
+             st.forward() ? 1 : -1});
       }
       walked += arc(st.edge, st.from, st.to);
     }
-    if (!best) return std::nullopt;
-    return where;
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.score < b.score; });
+    for (const Candidate& c : candidates) {
+      const int n = std::get<0>(c.score);
+      if (n == 1 && reaches_floating_unit(c.edge, c.point, c.dir, for_anchor)) continue;
+      return Chosen{c.edge, c.point, n};
+    }
+    return std::nullopt;
+  }
+
+  static bool on_path(const std::vector<Step>& path, int e, double s) {
+    return std::any_of(path.begin(), path.end(), [&](const Step& st) {
+      return st.edge == e && s > std::min(st.from, st.to) && s < std::max(st.from, st.to);
+    });
+  }
+
+  bool path_has_cut(const std::vector<Step>& path) const {
+    return std::any_of(cuts_.begin(), cuts_.end(),
+                       [&](const Cut& c) { return c.edge >= 0 && on_path(path, c.edge, c.s); });
+  }
+
+  // Whether the axis beyond position s of edge e, walking in direction dir
+  // up to the cuts, holds a floating unit.
+  bool reaches_floating_unit(int e0, double s0, int dir0, bool only_unfixable) const {
+    const auto counts = [&](int unit) { return unit >= 0 && (!only_unfixable || !fixable(unit)); };
+    const auto marks = edge_marks();
+    std::set<std::tuple<int, int, double>> visited;
+    std::vector<std::tuple<int, double, int>> todo{{e0, s0, dir0}};
+    while (!todo.empty()) {
+      const auto [e, s, dir] = todo.back();
+      todo.pop_back();
+      if (!visited.insert({e, dir, s}).second) continue;
+      bool stopped = false;
+      for (const Mark& m : marks[e]) {
+        const bool beyond = dir > 0 ? m.s > s + 1e-12 : m.s < s - 1e-12;
+        if (!beyond) continue;
+        if (counts(m.unit)) return true;
+        if (m.cut) {
+          // A unit between s and the cut still counts: keep looking at nearer marks.
+          const double cut_s = m.s;
+          for (const Mark& other : marks[e]) {
+            const bool between = dir > 0 ? other.s > s && other.s < cut_s : other.s < s && other.s > cut_s;
+            if (between && counts(other.unit)) return true;
+          }
+          stopped = true;
+          break;
+        }
+      }
+      if (stopped) continue;
+      const int last = point_count(e) - 1;
+      if (closed(e)) {
+        todo.push_back({e, dir > 0 ? 0.0 : static_cast<double>(last), dir});
+        continue;
+      }
+      const int v = dir > 0 ? axis_.edges[e].to : axis_.edges[e].from;
+      if (counts(vertex_unit(v))) return true;
+      if (vertex_cut(v)) continue;
+      for (const End& end : ends_[v]) {
+        if (end.edge == e && end.at_start == (dir < 0)) continue;
+        todo.push_back(
+            {end.edge, end.at_start ? 0.0 : static_cast<double>(point_count(end.edge) - 1), end.at_start ? 1 : -1});
+      }
+    }
+    return false;
   }
 
   // Length of the edge's polyline between two positions.
@@ -566,16 +817,43 @@ class Decomposer {
   }
 
   // Step 3 of section 4.2, first half: splits where a permitted one exists.
+  // Units in the order they are dealt with: first those that cannot be
+  // fixed (finite contacts: their k belongs to the disc round them), which
+  // then have their way with their neighbours.
+  std::vector<int> processing_order() const {
+    std::vector<int> order(units_.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_partition(order.begin(), order.end(), [&](int u) { return !fixable(u); });
+    return order;
+  }
+
   void resolve_neighbours() {
-    for (std::size_t u = 0; u < units_.size(); ++u) {
-      for (const Neighbour& nb : explore(static_cast<int>(u))) {
-        const bool behind = nb.path.back().forward();
-        if (nb.kind == FeatureKind::ConcaveSplit && concave_resolves(concave_[nb.id], behind)) {
+    for (const int u : processing_order()) {
+      if (!floating(u)) continue;
+      const bool anchor = !fixable(u);
+      const std::vector<Neighbour> neighbours = explore(u);
+      std::vector<const Neighbour*> unresolved;
+      for (const Neighbour& nb : neighbours) {
+        if (nb.kind == FeatureKind::ConcaveSplit && concave_resolves(concave_[nb.id], nb.path.back().forward())) {
           cut_concave(concave_[nb.id]);
-          continue;
+        } else if (nb.kind != FeatureKind::Unit || floating(nb.id)) {
+          unresolved.push_back(&nb);
         }
-        if (const auto where = best_cut(nb.path, nb.kind != FeatureKind::Unit)) {
-          cut_edge_at_point(where->first, where->second, SplitReason::Resolve);
+      }
+      for (const Neighbour* nbp : unresolved) {
+        const Neighbour& nb = *nbp;
+        if (!floating(u)) break;
+        if (path_has_cut(nb.path)) continue;  // an earlier split resolved it too
+        const bool to_unit = nb.kind == FeatureKind::Unit;
+        if (to_unit && !floating(nb.id)) continue;
+        const bool n1_allowed = !to_unit || (anchor && fixable(nb.id));
+        if (const auto where = best_cut(nb.path, n1_allowed, anchor, unresolved)) {
+          cut_edge_at_point(where->edge, where->point, SplitReason::Resolve);
+          if (to_unit && where->n == 1) {
+            fix(nb.id);  // its side of the split has the reflex corner
+            notes_.push_back("fixed a k = " + std::to_string(units_[nb.id].k) +
+                             " singularity next to one that cannot be fixed");
+          }
         }
       }
     }
@@ -586,9 +864,9 @@ class Decomposer {
   void fix_unresolved() {
     for (bool changed = true; changed;) {
       changed = false;
-      for (std::size_t u = 0; u < units_.size(); ++u) {
-        if (units_[u].fixed) continue;
-        for (const Neighbour& nb : explore(static_cast<int>(u))) {
+      for (const int u : processing_order()) {
+        if (!floating(u)) continue;
+        for (const Neighbour& nb : explore(u)) {
           const bool behind = nb.path.back().forward();
           if (nb.kind == FeatureKind::ConcaveSplit && concave_resolves(concave_[nb.id], behind)) {
             changed = cut_concave(concave_[nb.id]) || changed;
@@ -597,8 +875,10 @@ class Decomposer {
           if (nb.kind == FeatureKind::Unit && fixable(nb.id) && neighbour_fix_convex(nb)) {
             fix(nb.id);
             notes_.push_back("fixed a k = " + std::to_string(units_[nb.id].k) + " singularity next to another");
-          } else if (fixable(static_cast<int>(u))) {
-            fix(static_cast<int>(u));
+          } else if (nb.kind == FeatureKind::Unit && !fixable(u)) {
+            continue;  // inseparable from a singularity that cannot be fixed: they may share a block
+          } else if (fixable(u)) {
+            fix(u);
             notes_.push_back("fixed a k = " + std::to_string(units_[u].k) + " singularity: no permitted split");
           } else {
             continue;
@@ -685,7 +965,7 @@ class Decomposer {
   // The component a flow singularity lies in, or -1 when it is on a cut.
   int component_of(Pieces& p, int m) const {
     const Location& loc = locations_[m];
-    if (loc.vertex >= 0) return vertex_cut(loc.vertex) ? -1 : p.find(loc.vertex);
+    if (loc.vertex >= 0) return vertex_cut(loc.vertex) || boundary_fixed_.count(loc.vertex) ? -1 : p.find(loc.vertex);
     if (cut_at(loc.edge, loc.s)) return -1;
     return p.find(interval_of(p, loc.edge, loc.s));
   }
@@ -735,7 +1015,11 @@ class Decomposer {
     int e = e0, i = i0;
     bool fwd = fwd0;
     // The walk enters each interval at one end and leaves at the other.
+    std::set<std::tuple<int, bool, int>> seen;
     for (int guard = 0; guard < 4 * static_cast<int>(cuts_.size() + axis_.edges.size()) + 8; ++guard) {
+      // Every state has one successor and one predecessor, so a walk returns
+      // to its start; a state met twice otherwise means an inconsistent axis.
+      if (!seen.insert({e, fwd, i}).second) break;
       visited.insert({e, fwd, i});
       const int count = static_cast<int>(p.cuts[e].size());
       Item range;
@@ -769,12 +1053,15 @@ class Decomposer {
           Item gap;
           gap.a = range.b;
           gap.b = place_at(p, e, fwd, i, true);
+          const auto fixed_here = boundary_fixed_.find(v);
+          if (fixed_here != boundary_fixed_.end() && widest_gap(v) == static_cast<int>(k))
+            gap.virtual_corners = fixed_here->second;
           o.items.push_back(gap);
         }
       }
       if (e == e0 && fwd == fwd0 && i == i0) return o;
     }
-    throw std::runtime_error(face_.name + ": decomposition: a block outline does not close");
+    throw SelfCheckFailure(face_.name + ": decomposition: a block outline does not close");
   }
 
   // The boundary place on the walking side at position s of interval i.
@@ -867,7 +1154,7 @@ class Decomposer {
     std::map<int, std::vector<int>> units_in, outlines_of;
     std::set<int> broken_units;
     for (std::size_t u = 0; u < units_.size(); ++u) {
-      if (units_[u].fixed) continue;
+      if (!floating(static_cast<int>(u))) continue;
       std::set<int> comps;
       for (int m : units_[u].members) comps.insert(component_of(p, m));
       if (comps.size() != 1 || comps.count(-1)) {
@@ -878,24 +1165,56 @@ class Decomposer {
     }
     for (std::size_t i = 0; i < outlines.size(); ++i) outlines_of[outlines[i].component].push_back(static_cast<int>(i));
     for (const auto& [comp, list] : units_in) {
-      bool ok = list.size() == 1 && outlines_of[comp].size() == 1;
+      bool ok = outlines_of[comp].size() == 1;
       if (ok) {
+        // Several singularities in one convex block act as one merged node
+        // (section 4.3): accepted when nothing could split them apart.
+        int k = 0;
+        for (int u : list) k += units_[u].k;
         const Outline& o = outlines[outlines_of[comp].front()];
         const std::vector<int> types = corner_types(o);
-        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) &&
-             units_[list.front()].k <= 2 && units_[list.front()].k >= -4;
+        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) && k <= 2 &&
+             k >= -4 && (list.size() == 1 || std::any_of(list.begin(), list.end(), [&](int u) { return !fixable(u); }));
       }
       if (!ok) broken_units.insert(list.begin(), list.end());
+      // A singularity that cannot be fixed keeps its block: withdraw the
+      // splits that make its reflex corners, so their own singularities get
+      // fixed instead.
+      if (!ok && list.size() == 1 && !fixable(list.front()) && outlines_of[comp].size() == 1) {
+        changed_by_withdrawal_ = withdraw_reflex_splits(outlines[outlines_of[comp].front()]) || changed_by_withdrawal_;
+      }
     }
-    bool changed = false;
+    bool changed = changed_by_withdrawal_;
+    changed_by_withdrawal_ = false;
     for (int u : broken_units) {
-      if (!fixable(u)) continue;
+      // A finite contact is moved onto its arc only once withdrawing splits has not helped.
+      if (!fixable(u) && (changed || !boundary_fixable(u))) continue;
       fix(u);
       notes_.push_back("fixed a k = " + std::to_string(units_[u].k) +
                        " singularity: its block was not a convex polygon");
       changed = true;
     }
     return changed;
+  }
+
+  bool withdraw_reflex_splits(const Outline& o) {
+    const Flat flat = flatten(o);
+    std::set<int> bad;
+    const std::size_t count = flat.pieces.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      if (flat.start_type[i] == 1 || flat.start_type[i] == 2) continue;
+      for (const OutlinePiece* piece : {&flat.pieces[i], &flat.pieces[(i + count - 1) % count]}) {
+        if (piece->split < 0) continue;
+        const int c = split_owner_[piece->split];
+        if (cuts_[c].reason == SplitReason::Resolve || cuts_[c].reason == SplitReason::ConcaveCorner) bad.insert(c);
+      }
+    }
+    for (auto it = bad.rbegin(); it != bad.rend(); ++it) {
+      withdrawn_.insert({cuts_[*it].edge, std::lround(cuts_[*it].origin * 1e6)});
+      cuts_.erase(cuts_.begin() + *it);
+    }
+    if (!bad.empty()) notes_.push_back("withdrew splits that left a singularity that cannot be fixed a reflex corner");
+    return !bad.empty();
   }
 
   // A block outline that uses no split twice.
@@ -925,6 +1244,8 @@ class Decomposer {
         Candidate c{{1 << 20, 0, 0.0}, static_cast<int>(e), i, -1};
         for (int k = static_cast<int>(std::floor(lo)) + 1; k <= static_cast<int>(std::ceil(hi)) - 1; ++k) {
           const PointFlow& pf = flow_.points[e][k];
+          const MedialPoint& mp = axis_.edges[e].points[k];
+          if (inside_a_group(mp.p) || distance(mp.left.point, mp.right.point) < 1e-6 * face_.size) continue;
           const bool smooth = pf.left_corner < 0 && pf.right_corner < 0;
           const double mid = std::abs(k - 0.5 * (lo + hi)) / std::max(hi - lo, 1.0);
           const std::tuple<int, int, double> cost{std::abs(pf.q) + (smooth ? 0 : 8),
@@ -972,10 +1293,13 @@ class Decomposer {
 
   void make_splits() {
     splits_.clear();
-    for (Cut& c : cuts_) {
+    split_owner_.clear();
+    for (std::size_t ci = 0; ci < cuts_.size(); ++ci) {
+      Cut& c = cuts_[ci];
       c.splits.clear();
       if (c.edge >= 0) {
         c.splits.push_back(static_cast<int>(splits_.size()));
+        split_owner_.push_back(static_cast<int>(ci));
         splits_.push_back({{c.point.right.point, c.point.p, c.point.left.point}, c.reason});
         continue;
       }
@@ -983,6 +1307,7 @@ class Decomposer {
       const MedialVertex& v = axis_.vertices[c.vertex];
       for (const BoundaryPlace& t : v.touches) {
         c.splits.push_back(static_cast<int>(splits_.size()));
+        split_owner_.push_back(static_cast<int>(ci));
         splits_.push_back({{t.point, v.p}, c.reason});
       }
     }
@@ -1026,8 +1351,10 @@ class Decomposer {
     return pos >= n ? pos - n : pos;
   }
 
-  // The pieces of boundary edges forward along a loop from a to b.
-  std::vector<OutlinePiece> range_pieces(const Item& it) const {
+  // The pieces of boundary edges forward along a loop from a to b; a range
+  // with virtual corners is also cut where they are (evenly along it), and
+  // those pieces are marked as starting at one.
+  std::vector<OutlinePiece> range_pieces(const Item& it, std::vector<bool>& starts_at_virtual) const {
     std::vector<OutlinePiece> result;
     if (!it.full && distance(it.a.point, it.b.point) <= tol_) return result;
     const Loop& loop = face_.loops[it.a.loop];
@@ -1035,27 +1362,36 @@ class Decomposer {
     const double pa = loop_position(it.a);
     double pb = loop_position(it.b);
     if (it.full || pb <= pa) pb += n;
+    std::vector<std::pair<double, bool>> breaks;  // loop position, virtual corner there
+    for (int k = static_cast<int>(std::floor(pa)) + 1; k < pb; ++k) breaks.emplace_back(k, false);
+    for (int v = 0; v < it.virtual_corners; ++v)
+      breaks.emplace_back(pa + (v + 0.5) / it.virtual_corners * (pb - pa), true);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.emplace_back(pb, false);
     const double chord = 1e-4 * face_.size;
-    for (int k = static_cast<int>(std::floor(pa)); k < pb; ++k) {
-      const double lo = std::max(pa, static_cast<double>(k)), hi = std::min(pb, k + 1.0);
-      if (hi - lo <= 1e-15) continue;
-      const int ei = k % n;
-      const BoundaryEdge& e = loop.edges[ei];
-      OutlinePiece piece;
-      piece.loop = it.a.loop;
-      piece.edge = ei;
-      piece.t_from = e.t_start + (lo - k) * (e.t_end - e.t_start);
-      piece.t_to = e.t_start + (hi - k) * (e.t_end - e.t_start);
-      piece.points.push_back(lo == k ? e.start : edge_point(e, piece.t_from).p);
-      const bool up = e.t_end >= e.t_start;
-      for (double t : sample_edge_parameters(e, chord)) {
-        const bool inside = up ? (t > piece.t_from && t < piece.t_to) : (t < piece.t_from && t > piece.t_to);
-        if (inside) piece.points.push_back(edge_point(e, t).p);
+    double lo = pa;
+    bool virtual_start = false;
+    for (const auto& [hi, is_virtual] : breaks) {
+      if (hi - lo > 1e-15) {
+        const int k = static_cast<int>(std::floor(lo + 1e-12));
+        const BoundaryEdge& e = loop.edges[k % n];
+        OutlinePiece piece;
+        piece.loop = it.a.loop;
+        piece.edge = k % n;
+        piece.t_from = e.t_start + (lo - k) * (e.t_end - e.t_start);
+        piece.t_to = e.t_start + (hi - k) * (e.t_end - e.t_start);
+        piece.points.push_back(lo == pa ? it.a.point : lo == k ? e.start : edge_point(e, piece.t_from).p);
+        const bool up = e.t_end >= e.t_start;
+        for (double t : sample_edge_parameters(e, chord)) {
+          const bool inside = up ? (t > piece.t_from && t < piece.t_to) : (t < piece.t_from && t > piece.t_to);
+          if (inside) piece.points.push_back(edge_point(e, t).p);
+        }
+        piece.points.push_back(hi == pb ? it.b.point : hi == k + 1.0 ? e.end : edge_point(e, piece.t_to).p);
+        result.push_back(std::move(piece));
+        starts_at_virtual.push_back(virtual_start);
       }
-      piece.points.push_back(hi == k + 1.0 ? e.end : edge_point(e, piece.t_to).p);
-      if (lo != k && k == static_cast<int>(std::floor(pa))) piece.points.front() = it.a.point;
-      if (hi != k + 1.0 && hi == pb) piece.points.back() = it.b.point;
-      result.push_back(std::move(piece));
+      lo = std::max(lo, hi);
+      virtual_start = is_virtual;
     }
     return result;
   }
@@ -1076,11 +1412,13 @@ class Decomposer {
     std::vector<int> bend;  // per piece: elements at its start when it starts at a split's bend, else -1
     for (const Item& it : o.items) {
       if (!it.split) {
-        for (OutlinePiece& piece : range_pieces(it)) {
-          flat.pieces.push_back(std::move(piece));
+        std::vector<bool> virtual_start;
+        std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start);
+        for (std::size_t k = 0; k < pieces.size(); ++k) {
+          flat.pieces.push_back(std::move(pieces[k]));
           arm_out.push_back(0);
           arm_in.push_back(-1);
-          bend.push_back(-1);
+          bend.push_back(virtual_start[k] ? 1 : -1);  // a singularity fixed onto the boundary
         }
         continue;
       }
@@ -1145,29 +1483,47 @@ class Decomposer {
     d.splits = splits_;
     d.notes = notes_;
     Pieces p = pieces();
-    std::map<int, int> unit_in;   // component -> floating unit
+    std::map<int, int> unit_in;   // component -> its floating singularity in the output
     std::map<int, int> k_inside;  // component -> sum of the flow's k strictly inside
     for (std::size_t m = 0; m < locations_.size(); ++m) {
       const int comp = component_of(p, static_cast<int>(m));
       if (comp >= 0) k_inside[comp] += flow_.singularities[m].k;
     }
+    std::map<int, std::vector<int>> floating_in;  // component -> its floating units
     for (std::size_t u = 0; u < units_.size(); ++u) {
-      d.singularities.push_back({units_[u].p, units_[u].k, units_[u].fixed, units_[u].members});
-      if (!units_[u].fixed) unit_in[component_of(p, units_[u].members.front())] = static_cast<int>(u);
+      if (units_[u].k == 0) continue;  // a regular node for the mesh
+      if (units_[u].fixed) {
+        d.singularities.push_back({units_[u].p, units_[u].k, true, units_[u].members});
+      } else {
+        floating_in[component_of(p, units_[u].members.front())].push_back(static_cast<int>(u));
+      }
+    }
+    for (const auto& [comp, list] : floating_in) {
+      // Singularities sharing a block are one merged node of the mesh.
+      DecomposedSingularity merged{{0, 0}, 0, false, {}};
+      for (int u : list) {
+        merged.p = merged.p + units_[u].p / static_cast<double>(list.size());
+        merged.k += units_[u].k;
+        merged.members.insert(merged.members.end(), units_[u].members.begin(), units_[u].members.end());
+      }
+      if (list.size() > 1)
+        d.notes.push_back("merged " + std::to_string(list.size()) + " singularities that share a block");
+      unit_in[comp] = static_cast<int>(d.singularities.size());
+      d.singularities.push_back(merged);
     }
     std::map<int, int> outline_count;
     for (const Outline& o : outlines) ++outline_count[o.component];
     double total = 0.0;
     for (const Outline& o : outlines) {
       if (outline_count[o.component] != 1)
-        throw std::runtime_error(face_.name + ": decomposition self-check failed: a block is not simply connected");
+        throw SelfCheckFailure(face_.name + ": decomposition self-check failed: a block is not simply connected");
       Block b = make_block(o);
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
       if (sum != 4 + k_inside[o.component]) {
-        throw std::runtime_error(face_.name + ": decomposition self-check failed: the corners of a block sum to " +
-                                 std::to_string(sum) + " quarter turns, its singularities need " +
-                                 std::to_string(4 + k_inside[o.component]));
+        throw SelfCheckFailure(face_.name + ": decomposition self-check failed: the corners of a block sum to " +
+                               std::to_string(sum) + " quarter turns, its singularities need " +
+                               std::to_string(4 + k_inside[o.component]));
       }
       const auto it = unit_in.find(o.component);
       const bool convex =
@@ -1177,7 +1533,7 @@ class Decomposer {
         b.kind = convex && simple(o) && b.corners.size() <= 6 ? BlockKind::Polygon : BlockKind::Submap;
         if (b.kind == BlockKind::Submap) {
           d.fallback = true;
-          d.notes.push_back("a k = " + std::to_string(units_[it->second].k) +
+          d.notes.push_back("a k = " + std::to_string(d.singularities[it->second].k) +
                             " singularity could be neither given a convex block nor fixed");
         }
       } else {
@@ -1187,8 +1543,8 @@ class Decomposer {
       d.blocks.push_back(std::move(b));
     }
     if (std::abs(total - face_.area) > 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size) {
-      throw std::runtime_error(face_.name + ": decomposition self-check failed: the blocks' areas add up to " +
-                               std::to_string(total) + ", the face's is " + std::to_string(face_.area));
+      throw SelfCheckFailure(face_.name + ": decomposition self-check failed: the blocks' areas add up to " +
+                             std::to_string(total) + ", the face's is " + std::to_string(face_.area));
     }
     return d;
   }
@@ -1232,6 +1588,11 @@ class Decomposer {
   std::vector<std::vector<End>> ends_;
   std::vector<ConcavePoint> concave_;
   std::vector<Cut> cuts_;
+  std::set<int> taken_apart_;                 // first members of groups taken apart
+  std::map<int, int> boundary_fixed_;         // finite-contact vertex -> convex corners put on its arc
+  std::vector<int> split_owner_;              // the cut each split belongs to
+  std::set<std::pair<int, long>> withdrawn_;  // (edge, position x 1e6) of withdrawn cuts, never placed again
+  bool changed_by_withdrawal_ = false;
   std::vector<Split> splits_;
   std::vector<std::string> notes_;
 };

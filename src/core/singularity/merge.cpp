@@ -7,7 +7,7 @@
 
 namespace mm {
 
-std::vector<SingularityGroup> merge_singularities(const std::vector<Singularity>& singularities,
+std::vector<SingularityGroup> group_singularities(const std::vector<Singularity>& singularities,
                                                   const MergeTolerance& tolerance) {
   if (tolerance.mesh_size < 0.0) throw InputError("the merge mesh size must be positive");
   if (tolerance.mesh_size == 0.0 && !(tolerance.radius_factor >= 0.25 && tolerance.radius_factor <= 1.0)) {
@@ -37,13 +37,20 @@ std::vector<SingularityGroup> merge_singularities(const std::vector<Singularity>
     g.p = g.p + singularities[i].p;
     g.members.push_back(static_cast<int>(i));
   }
-  std::vector<SingularityGroup> merged;
+  std::vector<SingularityGroup> all;
   for (auto& [key, g] : groups) {
-    if (g.k == 0) continue;
     g.p = g.p / static_cast<double>(g.members.size());
-    merged.push_back(std::move(g));
+    all.push_back(std::move(g));
   }
-  std::sort(merged.begin(), merged.end(), [](const auto& a, const auto& b) { return a.members[0] < b.members[0]; });
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.members[0] < b.members[0]; });
+  return all;
+}
+
+std::vector<SingularityGroup> merge_singularities(const std::vector<Singularity>& singularities,
+                                                  const MergeTolerance& tolerance) {
+  std::vector<SingularityGroup> merged = group_singularities(singularities, tolerance);
+  merged.erase(std::remove_if(merged.begin(), merged.end(), [](const SingularityGroup& g) { return g.k == 0; }),
+               merged.end());
   return merged;
 }
 

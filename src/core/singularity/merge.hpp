@@ -24,6 +24,11 @@ struct SingularityGroup {
 // Groups singularities transitively closer than the tolerance; a group's k is
 // the sum of its members' and groups of net k = 0 are dropped. Throws
 // InputError for a factor outside [0.25, 1] or a negative mesh size.
+// The same groups, singletons and groups of net k = 0 included, in order of
+// their first member.
+std::vector<SingularityGroup> group_singularities(const std::vector<Singularity>& singularities,
+                                                  const MergeTolerance& tolerance);
+
 std::vector<SingularityGroup> merge_singularities(const std::vector<Singularity>& singularities,
                                                   const MergeTolerance& tolerance);
 

@@ -1,0 +1,154 @@
+#include "decomposition_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "medial/medial_axis.hpp"
+
+namespace mm::test {
+
+namespace {
+
+bool point_in_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2 a = polygon[i], b = polygon[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+  }
+  return in;
+}
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double len2 = dot(d, d);
+  const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+  return distance(a + f * d, p);
+}
+
+double distance_to_polyline(Vec2 p, const std::vector<Vec2>& line, bool closed) {
+  double best = 1e300;
+  const std::size_t n = line.size();
+  for (std::size_t i = 0; i + (closed ? 0 : 1) < n; ++i)
+    best = std::min(best, distance_to_segment(p, line[i], line[(i + 1) % n]));
+  return best;
+}
+
+// Whether segments ab and cd cross at a point inside both (not at an end).
+bool cross_properly(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double tol) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  const double ab = norm(b - a), cd = norm(d - c);
+  return ((d1 > tol * ab && d2 < -tol * ab) || (d1 < -tol * ab && d2 > tol * ab)) &&
+         ((d3 > tol * cd && d4 < -tol * cd) || (d3 < -tol * cd && d4 > tol * cd));
+}
+
+bool inside_face(const std::vector<std::vector<Vec2>>& loops, Vec2 p) {
+  bool in = point_in_polygon(loops[0], p);
+  for (std::size_t i = 1; i < loops.size(); ++i) in = in && !point_in_polygon(loops[i], p);
+  return in;
+}
+
+}  // namespace
+
+Decomposition decompose_face(const FaceModel& face, double merge_factor) {
+  const MedialAxis axis = compute_medial_axis(face);
+  const MeshFlow flow = compute_mesh_flow(face, axis);
+  DecompositionOptions options;
+  options.merge = merge_factor > 0;
+  options.tolerance.radius_factor = merge_factor > 0 ? merge_factor : 0.75;
+  return decompose(face, axis, flow, options);
+}
+
+std::vector<std::string> decomposition_problems(const FaceModel& face, const MeshFlow& flow, const Decomposition& d) {
+  std::vector<std::string> problems;
+  const auto problem = [&](const std::string& what) { problems.push_back(face.name + ": " + what); };
+  const double tol = 1e-7 * face.size + face.tolerance;
+  std::vector<std::vector<Vec2>> loops;
+  for (const Loop& loop : face.loops) loops.push_back(sample_loop(loop, 1e-5 * face.size));
+
+  double total = 0.0;
+  for (std::size_t b = 0; b < d.blocks.size(); ++b) {
+    const Block& block = d.blocks[b];
+    const std::string name = "block " + std::to_string(b);
+    total += block.area;
+    if (!(block.area > 0)) problem(name + " has area " + std::to_string(block.area));
+    // Simple: no two outline segments cross (a submap block may run along one split twice).
+    const auto& o = block.outline;
+    for (std::size_t i = 0; i < o.size(); ++i) {
+      for (std::size_t j = i + 2; j < o.size(); ++j) {
+        if (i == 0 && j + 1 == o.size()) continue;
+        if (cross_properly(o[i], o[(i + 1) % o.size()], o[j], o[(j + 1) % o.size()], 1e-9)) {
+          problem(name + " outline crosses itself");
+          i = o.size();
+          break;
+        }
+      }
+    }
+    int turning = 0;
+    for (const BlockCorner& c : block.corners) turning += 2 - c.type;
+    int inside_k = 0;
+    if (block.singularity >= 0) inside_k = d.singularities[block.singularity].k;
+    if (turning != 4 + inside_k) {
+      problem(name + " corners turn by " + std::to_string(turning) + " quarter turns, not " +
+              std::to_string(4 + inside_k));
+    }
+    if (block.kind == BlockKind::Polygon) {
+      if (block.corners.size() > 6)
+        problem(name + " is a polygon of " + std::to_string(block.corners.size()) + " sides");
+      for (const BlockCorner& c : block.corners) {
+        if (c.type != 1) problem(name + " is a polygon with a corner of type " + std::to_string(c.type));
+      }
+      if (block.singularity < 0 && block.corners.size() != 4) problem(name + " is a polygon with no singularity");
+    } else if (block.singularity >= 0) {
+      problem(name + " is a submap block holding a singularity");
+    }
+  }
+  if (std::abs(total - face.area) > 1e-9 * face.area) {
+    problem("blocks add up to " + std::to_string(total) + ", the face is " + std::to_string(face.area));
+  }
+  // Every floating singularity in exactly one block, inside its outline.
+  for (std::size_t s = 0; s < d.singularities.size(); ++s) {
+    const DecomposedSingularity& sing = d.singularities[s];
+    int holders = 0;
+    for (const Block& block : d.blocks) {
+      if (block.singularity != static_cast<int>(s)) continue;
+      ++holders;
+      for (int m : sing.members) {
+        const Vec2 p = flow.singularities[m].p;
+        if (!point_in_polygon(block.outline, p) && distance_to_polyline(p, block.outline, true) > tol)
+          problem("a k = " + std::to_string(sing.k) + " singularity lies outside its block");
+      }
+    }
+    if (!sing.fixed && holders != 1) problem("a floating singularity is in " + std::to_string(holders) + " blocks");
+    if (sing.fixed && holders != 0) problem("a fixed singularity is inside a block");
+  }
+  // Splits: inside the face, ends on the boundary or on another split, no crossings.
+  for (std::size_t i = 0; i < d.splits.size(); ++i) {
+    const auto& line = d.splits[i].polyline;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+      const Vec2 mid = 0.5 * (line[k] + line[k + 1]);
+      if (!inside_face(loops, mid) && distance_to_polyline(mid, loops[0], true) > tol)
+        problem("split " + std::to_string(i) + " leaves the face");
+    }
+    for (const Vec2 end : {line.front(), line.back()}) {
+      double nearest = 1e300;
+      for (const auto& loop : loops) nearest = std::min(nearest, distance_to_polyline(end, loop, true));
+      for (std::size_t j = 0; j < d.splits.size(); ++j) {
+        if (j != i) nearest = std::min(nearest, distance_to_polyline(end, d.splits[j].polyline, false));
+      }
+      if (nearest > 1e-5 * face.size) problem("split " + std::to_string(i) + " ends in the open");
+    }
+    for (std::size_t j = i + 1; j < d.splits.size(); ++j) {
+      const auto& other = d.splits[j].polyline;
+      for (std::size_t a = 0; a + 1 < line.size(); ++a) {
+        for (std::size_t b = 0; b + 1 < other.size(); ++b) {
+          if (cross_properly(line[a], line[a + 1], other[b], other[b + 1], 1e-9))
+            problem("splits " + std::to_string(i) + " and " + std::to_string(j) + " cross");
+        }
+      }
+    }
+  }
+  return problems;
+}
+
+}  // namespace mm::test
