@@ -1,10 +1,13 @@
 // Time of the medial axis against boundary size: square plates with 1, 10,
 // 100 and 1000 round holes on a grid. Reports the number of boundary chords
 // the Voronoi diagram is built on and fits the growth (expected n log n).
+// Then the decomposition alone (from a given axis and flow) and the whole
+// way from the boundary model to the blocks, on the same plates.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include "decomposition/decomposition.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial/voronoi_graph.hpp"
 
@@ -43,6 +46,27 @@ BENCHMARK(BM_MedialAxisOfPlate)
     ->Arg(1000)
     ->Unit(benchmark::kMillisecond)
     ->Complexity(benchmark::oNLogN);
+
+void BM_DecompositionOfPlate(benchmark::State& state) {
+  const mm::FaceModel face = plate_with_holes(static_cast<int>(state.range(0)));
+  const mm::MedialAxis axis = mm::compute_medial_axis(face);
+  const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+  std::size_t blocks = 0;
+  for (auto _ : state) blocks = mm::decompose(face, axis, flow, {}).blocks.size();
+  state.counters["singularities"] = static_cast<double>(flow.singularities.size());
+  state.counters["blocks"] = static_cast<double>(blocks);
+}
+BENCHMARK(BM_DecompositionOfPlate)->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
+
+void BM_BoundaryToBlocksOfPlate(benchmark::State& state) {
+  const mm::FaceModel face = plate_with_holes(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const mm::MedialAxis axis = mm::compute_medial_axis(face);
+    const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+    benchmark::DoNotOptimize(mm::decompose(face, axis, flow, {}));
+  }
+}
+BENCHMARK(BM_BoundaryToBlocksOfPlate)->Arg(1)->Arg(10)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -163,9 +163,12 @@ class Decomposer {
     // its members; one that gets parted is taken apart and the process redone.
     for (;;) {
       cuts_.clear();
+      vertex_cuts_.clear();
+      ++version_;
       boundary_fixed_.clear();
       notes_.clear();
       for (Unit& u : units_) u.fixed = false;
+      ++version_;
       if (fix_all) {
         for (std::size_t u = 0; u < units_.size(); ++u) {
           if (floating(static_cast<int>(u)) && boundary_fixable(static_cast<int>(u))) fix(static_cast<int>(u));
@@ -222,6 +225,7 @@ class Decomposer {
     std::vector<SingularityGroup> groups;
     if (options_.merge) groups = group_singularities(flow_.singularities, options_.tolerance);
     units_.clear();
+    ++version_;
     for (SingularityGroup& g : groups) {
       if (g.members.size() > 1 && !taken_apart_.count(g.members.front())) units_.push_back({g.k, g.p, g.members});
     }
@@ -235,21 +239,26 @@ class Decomposer {
     }
     std::sort(units_.begin(), units_.end(), [](const Unit& a, const Unit& b) { return a.members[0] < b.members[0]; });
     unit_of_.assign(flow_.singularities.size(), -1);
+    member_pairs_.clear();
     for (std::size_t u = 0; u < units_.size(); ++u) {
-      for (int m : units_[u].members) unit_of_[m] = static_cast<int>(u);
+      const auto& members = units_[u].members;
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        unit_of_[members[i]] = static_cast<int>(u);
+        for (std::size_t j = i + 1; j < members.size(); ++j)
+          member_pairs_.emplace_back(flow_.singularities[members[i]].p, flow_.singularities[members[j]].p);
+      }
+    }
+    vertex_member_.assign(axis_.vertices.size(), -1);
+    for (std::size_t m = 0; m < locations_.size(); ++m) {
+      if (locations_[m].vertex >= 0) vertex_member_[locations_[m].vertex] = static_cast<int>(m);
     }
   }
 
   // Whether a cut at p could part the members of a group: p lies between two of them.
   bool inside_a_group(Vec2 p) const {
-    for (const Unit& u : units_) {
-      for (std::size_t i = 0; i < u.members.size(); ++i) {
-        for (std::size_t j = i + 1; j < u.members.size(); ++j) {
-          const Vec2 a = flow_.singularities[u.members[i]].p, b = flow_.singularities[u.members[j]].p;
-          const double reach = distance(a, b) + tol_;
-          if (distance(p, a) <= reach && distance(p, b) <= reach) return true;
-        }
-      }
+    for (const auto& [a, b] : member_pairs_) {
+      const double reach = distance(a, b) + tol_;
+      if (distance(p, a) <= reach && distance(p, b) <= reach) return true;
     }
     return false;
   }
@@ -400,9 +409,7 @@ class Decomposer {
     return false;
   }
 
-  bool vertex_cut(int v) const {
-    return std::any_of(cuts_.begin(), cuts_.end(), [&](const Cut& c) { return c.vertex == v; });
-  }
+  bool vertex_cut(int v) const { return vertex_cuts_.count(v) > 0; }
 
   bool withdrawn(int e, double s) const { return withdrawn_.count({e, std::lround(s * 1e6)}) > 0; }
 
@@ -416,6 +423,7 @@ class Decomposer {
     c.reason = reason;
     refine(c);
     cuts_.push_back(c);
+    ++version_;
   }
 
   // The exact medial point near a cut's polyline point where the medial
@@ -481,6 +489,7 @@ class Decomposer {
     c.behind = c.ahead = cp.flow;
     c.reason = SplitReason::ConcaveCorner;
     cuts_.push_back(c);
+    ++version_;
     return true;
   }
 
@@ -534,6 +543,7 @@ class Decomposer {
 
   void fix(int u) {
     units_[u].fixed = true;
+    ++version_;
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
       if (loc.vertex >= 0 && axis_.vertices[loc.vertex].kind == MedialVertexKind::FiniteContact) {
@@ -546,6 +556,10 @@ class Decomposer {
         c.vertex = loc.vertex;
         c.reason = SplitReason::Fix;
         cuts_.push_back(c);
+        ++version_;
+        ++version_;
+        ++version_;
+        vertex_cuts_.insert(loc.vertex);
         continue;
       }
       if (cut_at(loc.edge, loc.s)) continue;
@@ -562,6 +576,8 @@ class Decomposer {
       c.ahead = flow_.points[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
       cuts_.push_back(c);
+      ++version_;
+      ++version_;
     }
   }
 
@@ -574,8 +590,13 @@ class Decomposer {
     bool cut = false;
   };
 
-  std::vector<std::vector<Mark>> edge_marks() const {
-    std::vector<std::vector<Mark>> marks(axis_.edges.size());
+  // Per edge, its features sorted by position; rebuilt after every change
+  // of the cuts or of which units float.
+  const std::vector<std::vector<Mark>>& edge_marks() const {
+    if (marks_version_ == version_) return marks_;
+    marks_version_ = version_;
+    std::vector<std::vector<Mark>>& marks = marks_;
+    marks.assign(axis_.edges.size(), {});
     for (std::size_t m = 0; m < locations_.size(); ++m) {
       if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && floating(unit_of_[m]))
         marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
@@ -597,10 +618,8 @@ class Decomposer {
   bool floating(int u) const { return units_[u].k != 0 && !units_[u].fixed; }
 
   int vertex_unit(int v) const {
-    for (std::size_t m = 0; m < locations_.size(); ++m) {
-      if (locations_[m].vertex == v && unit_of_[m] >= 0 && floating(unit_of_[m])) return unit_of_[m];
-    }
-    return -1;
+    const int m = vertex_member_[v];
+    return m >= 0 && unit_of_[m] >= 0 && floating(unit_of_[m]) ? unit_of_[m] : -1;
   }
 
   int corner_index(const BoundaryPlace& place) const {
@@ -611,7 +630,7 @@ class Decomposer {
 
   // The features the medial axis leads to from unit u, each with its path.
   std::vector<Neighbour> explore(int u) const {
-    const auto marks = edge_marks();
+    const auto& marks = edge_marks();
     std::vector<Neighbour> found;
     std::set<std::tuple<int, int, double>> visited;
     std::vector<Step> path;
@@ -705,7 +724,12 @@ class Decomposer {
       const auto& pts = axis_.edges[st.edge].points;
       const int lo = static_cast<int>(std::floor(std::min(st.from, st.to))) + 1;
       const int hi = static_cast<int>(std::ceil(std::max(st.from, st.to))) - 1;
+      // Arc length walked up to point i, carried along.
+      double at = walked;
+      double at_s = st.from;
       for (int i = lo; i <= hi; ++i) {
+        at += arc(st.edge, at_s, i);
+        at_s = i;
         const PointFlow& pf = flow_.points[st.edge][i];
         if (pf.left_corner >= 0 || pf.right_corner >= 0) continue;
         if (distance(pts[i].left.point, pts[i].right.point) < 1e-6 * face_.size) continue;
@@ -713,7 +737,6 @@ class Decomposer {
         const int n = std::abs(pf.q);
         if (n > 1) continue;
         if (n == 1 && (!convex_n1_allowed || bend_for(st.forward(), pf.q) != 1)) continue;
-        const double at = walked + arc(st.edge, st.from, i);
         const bool outer = at < 0.1 * length || at > 0.9 * length;
         int shared = 0;
         for (const Neighbour* other : others) shared += on_path(other->path, st.edge, i) ? 1 : 0;
@@ -750,7 +773,7 @@ class Decomposer {
   // up to the cuts, holds a floating unit.
   bool reaches_floating_unit(int e0, double s0, int dir0, bool only_unfixable) const {
     const auto counts = [&](int unit) { return unit >= 0 && (!only_unfixable || !fixable(unit)); };
-    const auto marks = edge_marks();
+    const auto& marks = edge_marks();
     std::set<std::tuple<int, int, double>> visited;
     std::vector<std::tuple<int, double, int>> todo{{e0, s0, dir0}};
     while (!todo.empty()) {
@@ -1212,6 +1235,7 @@ class Decomposer {
     for (auto it = bad.rbegin(); it != bad.rend(); ++it) {
       withdrawn_.insert({cuts_[*it].edge, std::lround(cuts_[*it].origin * 1e6)});
       cuts_.erase(cuts_.begin() + *it);
+      ++version_;
     }
     if (!bad.empty()) notes_.push_back("withdrew splits that left a singularity that cannot be fixed a reflex corner");
     return !bad.empty();
@@ -1354,7 +1378,7 @@ class Decomposer {
   // The pieces of boundary edges forward along a loop from a to b; a range
   // with virtual corners is also cut where they are (evenly along it), and
   // those pieces are marked as starting at one.
-  std::vector<OutlinePiece> range_pieces(const Item& it, std::vector<bool>& starts_at_virtual) const {
+  std::vector<OutlinePiece> range_pieces(const Item& it, std::vector<bool>& starts_at_virtual, bool sampled) const {
     std::vector<OutlinePiece> result;
     if (!it.full && distance(it.a.point, it.b.point) <= tol_) return result;
     const Loop& loop = face_.loops[it.a.loop];
@@ -1368,7 +1392,6 @@ class Decomposer {
       breaks.emplace_back(pa + (v + 0.5) / it.virtual_corners * (pb - pa), true);
     std::sort(breaks.begin(), breaks.end());
     breaks.emplace_back(pb, false);
-    const double chord = 1e-4 * face_.size;
     double lo = pa;
     bool virtual_start = false;
     for (const auto& [hi, is_virtual] : breaks) {
@@ -1382,7 +1405,7 @@ class Decomposer {
         piece.t_to = e.t_start + (hi - k) * (e.t_end - e.t_start);
         piece.points.push_back(lo == pa ? it.a.point : lo == k ? e.start : edge_point(e, piece.t_from).p);
         const bool up = e.t_end >= e.t_start;
-        for (double t : sample_edge_parameters(e, chord)) {
+        for (double t : sampled ? edge_samples(it.a.loop, k % n) : std::vector<double>{}) {
           const bool inside = up ? (t > piece.t_from && t < piece.t_to) : (t < piece.t_from && t > piece.t_to);
           if (inside) piece.points.push_back(edge_point(e, t).p);
         }
@@ -1403,7 +1426,16 @@ class Decomposer {
     return it == corner_of_.end() ? 2 : face_.corners[it->second].nc;
   }
 
-  Flat flatten(const Outline& o) const {
+  // Parameters of the points drawn along a boundary edge, computed once.
+  const std::vector<double>& edge_samples(int loop, int edge) const {
+    auto& cached = samples_[{loop, edge}];
+    if (cached.empty()) cached = sample_edge_parameters(face_.loops[loop].edges[edge], 1e-4 * face_.size);
+    return cached;
+  }
+
+  // The outline's pieces and corner types; sampled: with points along the
+  // curved pieces (for the blocks handed out), else only their ends.
+  Flat flatten(const Outline& o, bool sampled = false) const {
     Flat flat;
     // Per piece: the arm of the cross it leaves its start along and arrives
     // at its end along, where that end is a split's end on the boundary; a
@@ -1413,7 +1445,7 @@ class Decomposer {
     for (const Item& it : o.items) {
       if (!it.split) {
         std::vector<bool> virtual_start;
-        std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start);
+        std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start, sampled);
         for (std::size_t k = 0; k < pieces.size(); ++k) {
           flat.pieces.push_back(std::move(pieces[k]));
           arm_out.push_back(0);
@@ -1550,7 +1582,7 @@ class Decomposer {
   }
 
   Block make_block(const Outline& o) const {
-    Flat flat = flatten(o);
+    Flat flat = flatten(o, true);
     Block b;
     const std::size_t count = flat.pieces.size();
     std::size_t first = 0;
@@ -1587,11 +1619,18 @@ class Decomposer {
   std::vector<int> unit_of_;
   std::vector<std::vector<End>> ends_;
   std::vector<ConcavePoint> concave_;
+  mutable std::map<std::pair<int, int>, std::vector<double>> samples_;  // see edge_samples
   std::vector<Cut> cuts_;
-  std::set<int> taken_apart_;                 // first members of groups taken apart
-  std::map<int, int> boundary_fixed_;         // finite-contact vertex -> convex corners put on its arc
-  std::vector<int> split_owner_;              // the cut each split belongs to
-  std::set<std::pair<int, long>> withdrawn_;  // (edge, position x 1e6) of withdrawn cuts, never placed again
+  long version_ = 0;  // bumped by every change of cuts_ or of units_' fixed flags
+  mutable long marks_version_ = -1;
+  mutable std::vector<std::vector<Mark>> marks_;     // see edge_marks
+  std::set<int> vertex_cuts_;                        // vertices with a vertex cut
+  std::vector<std::pair<Vec2, Vec2>> member_pairs_;  // positions of two members of one group
+  std::vector<int> vertex_member_;                   // per medial vertex, the flow singularity there or -1
+  std::set<int> taken_apart_;                        // first members of groups taken apart
+  std::map<int, int> boundary_fixed_;                // finite-contact vertex -> convex corners put on its arc
+  std::vector<int> split_owner_;                     // the cut each split belongs to
+  std::set<std::pair<int, long>> withdrawn_;         // (edge, position x 1e6) of withdrawn cuts, never placed again
   bool changed_by_withdrawal_ = false;
   std::vector<Split> splits_;
   std::vector<std::string> notes_;
