@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The main job on the bundled example face: installs what is missing, builds,
 # and writes the face report (text and JSON), the medial axis (JSON), the mesh
-# flow with its singularities (text and JSON), their pictures, and a FreeCAD
-# document with the face analysed plus a picture of its 3D view into out/.
+# flow with its singularities (text and JSON), the block decomposition (JSON,
+# picture and the block faces as BREP), their pictures, and a FreeCAD
+# document with the face analysed and decomposed plus a picture of its 3D
+# view into out/.
 #   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -22,6 +24,16 @@ rsvg-convert -o "$out/$name.medial.png" "$out/$name.medial.svg"
 "$cli" singularities "$input" --svg "$out/$name.singularities.svg" | tee "$out/$name.singularities.txt"
 "$cli" singularities "$input" --json >"$out/$name.singularities.json"
 rsvg-convert -o "$out/$name.singularities.png" "$out/$name.singularities.svg"
+"$cli" decompose "$input" --json --svg "$out/$name.decomposition.svg" --blocks "$out/$name.blocks.brep" \
+  >"$out/$name.decomposition.json"
+rsvg-convert -o "$out/$name.decomposition.png" "$out/$name.decomposition.svg"
+python3 - "$out/$name.decomposition.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+kinds = [b["kind"] for b in d["blocks"]]
+print(f"decomposition: {len(d['blocks'])} blocks ({kinds.count('polygon')} polygons, "
+      f"{kinds.count('submap')} submappable), {len(d['splits'])} splits, {len(d['fixed'])} fixed singularities")
+PY
 # The same face analysed in FreeCAD, as a user would: a document and a picture.
 home="$(mktemp -d)"
 trap 'rm -rf "$home"' EXIT
@@ -33,4 +45,5 @@ grep -q "^freecad-demo" "$home/log" || { echo "demo: the FreeCAD part failed" >&
 echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and corners)," \
   "$name.medial.json, $name.medial.svg/.png (medial axis)," \
   "$name.singularities.txt/.json/.svg/.png (flow types and singularities)," \
-  "$name.freecad.FCStd/.png (the analysis in FreeCAD)"
+  "$name.decomposition.json/.svg/.png and $name.blocks.brep (the blocks)," \
+  "$name.freecad.FCStd/.png (the analysis and decomposition in FreeCAD)"
