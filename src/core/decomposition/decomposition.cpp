@@ -133,6 +133,7 @@ class Decomposer {
       corner_of_[{face.corners[i].loop, face.corners[i].vertex}] = static_cast<int>(i);
     }
     if (flow.points.size() != axis.edges.size()) throw std::runtime_error(face.name + ": mesh flow has no point flow");
+    contract_zero_length_edges();
     locate_singularities();
     make_units();
     sort_ends();
@@ -192,11 +193,39 @@ class Decomposer {
   int point_count(int e) const { return static_cast<int>(axis_.edges[e].points.size()); }
   bool closed(int e) const { return axis_.edges[e].from < 0; }
 
+  // Junctions the medial stage left at one point, joined by an edge of no
+  // length (under 1e-6 of the face size), act as one vertex: the walk round the axis needs one order of
+  // the edges round a point.
+  void contract_zero_length_edges() {
+    rep_.resize(axis_.vertices.size());
+    std::iota(rep_.begin(), rep_.end(), 0);
+    contracted_.assign(axis_.edges.size(), false);
+    const auto root = [&](int v) {
+      while (rep_[v] != v) v = rep_[v] = rep_[rep_[v]];
+      return v;
+    };
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      const MedialEdge& edge = axis_.edges[e];
+      if (edge.from < 0 || edge.from == edge.to) continue;
+      double length = 0.0;
+      for (std::size_t i = 1; i < edge.points.size(); ++i) length += distance(edge.points[i - 1].p, edge.points[i].p);
+      if (length > 1e-6 * face_.size) continue;  // the medial axis's own accuracy
+      contracted_[e] = true;
+      rep_[root(edge.from)] = root(edge.to);
+    }
+    for (std::size_t v = 0; v < rep_.size(); ++v) rep_[v] = root(static_cast<int>(v));
+  }
+
+  // The vertex an edge starts (at_start) or ends at, coincident junctions as one.
+  int end_vertex(int e, bool at_start) const { return rep_[at_start ? axis_.edges[e].from : axis_.edges[e].to]; }
+
   void locate_singularities() {
     for (const Singularity& s : flow_.singularities) {
       Location loc;
       if (s.vertex >= 0) {
-        loc.vertex = s.vertex;
+        loc.vertex = rep_[s.vertex];
+      } else if (contracted_[s.edge]) {
+        loc.vertex = end_vertex(s.edge, true);
       } else {
         loc.edge = s.edge;
         loc.s = project(s.edge, s.p);
@@ -293,10 +322,11 @@ class Decomposer {
     ends_.resize(axis_.vertices.size());
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
       const MedialEdge& edge = axis_.edges[e];
-      if (edge.from < 0) continue;
+      if (edge.from < 0 || contracted_[e]) continue;
       for (const bool at_start : {true, false}) {
         const Vec2 d = end_direction(static_cast<int>(e), at_start);
-        ends_[at_start ? edge.from : edge.to].push_back({static_cast<int>(e), at_start, std::atan2(d.y, d.x)});
+        ends_[end_vertex(static_cast<int>(e), at_start)].push_back(
+            {static_cast<int>(e), at_start, std::atan2(d.y, d.x)});
       }
     }
     for (auto& list : ends_) {
@@ -479,14 +509,35 @@ class Decomposer {
     if (const auto m = exact(best)) c.point = *m, c.s = best;
   }
 
+  // Where a concave corner's split cuts its edge: at the point itself, or
+  // on a switch between the polyline points either side of it (the switch
+  // is then taken to be on the split).
+  double cut_position(const ConcavePoint& cp) const {
+    const int i = std::clamp(static_cast<int>(std::floor(cp.s)), 0, point_count(cp.edge) - 2);
+    for (const Location& loc : locations_) {
+      if (loc.edge == cp.edge && loc.s > i && loc.s < i + 1) return loc.s;
+    }
+    return cp.s;
+  }
+
   // Returns whether the cut is new.
   bool cut_concave(const ConcavePoint& cp) {
-    if (cut_at(cp.edge, cp.s) || withdrawn(cp.edge, cp.s)) return false;
+    if (cut_at(cp.edge, cut_position(cp)) || withdrawn(cp.edge, cp.s)) return false;
     Cut c;
     c.edge = cp.edge;
     c.s = c.origin = cp.s;
     c.point = cp.point;
-    c.behind = c.ahead = cp.flow;
+    // The flow on either side, both turned onto the arm: where the arm is
+    // the corner's radius perpendicular to an edge the adjusted direction
+    // jumps there, and the flow may switch right at the split.
+    const int i = std::clamp(static_cast<int>(std::floor(cp.s)), 0, point_count(cp.edge) - 2);
+    c.behind = flow_.points[cp.edge][i];
+    c.ahead = flow_.points[cp.edge][i + 1];
+    for (PointFlow* f : {&c.behind, &c.ahead}) {
+      (cp.corner_on_left ? f->left_corner : f->right_corner) = cp.corner;
+      (cp.corner_on_left ? f->left_arm : f->right_arm) = cp.arm;
+    }
+    c.s = cut_position(cp);
     c.reason = SplitReason::ConcaveCorner;
     cuts_.push_back(c);
     ++version_;
@@ -602,7 +653,7 @@ class Decomposer {
         marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
     }
     for (std::size_t i = 0; i < concave_.size(); ++i) {
-      if (!cut_at(concave_[i].edge, concave_[i].s))
+      if (!cut_at(concave_[i].edge, cut_position(concave_[i])))
         marks[concave_[i].edge].push_back({concave_[i].s, -1, static_cast<int>(i)});
     }
     for (const Cut& c : cuts_) {
@@ -655,7 +706,7 @@ class Decomposer {
       if (closed(e)) {
         walk(e, dir > 0 ? 0.0 : static_cast<double>(last), dir);
       } else {
-        arrive(e, dir > 0 ? axis_.edges[e].to : axis_.edges[e].from, dir < 0, walk, found, u, path);
+        arrive(e, end_vertex(e, dir < 0), dir < 0, walk, found, u, path);
       }
       path.pop_back();
     };
@@ -802,7 +853,7 @@ class Decomposer {
         todo.push_back({e, dir > 0 ? 0.0 : static_cast<double>(last), dir});
         continue;
       }
-      const int v = dir > 0 ? axis_.edges[e].to : axis_.edges[e].from;
+      const int v = end_vertex(e, dir < 0);
       if (counts(vertex_unit(v))) return true;
       if (vertex_cut(v)) continue;
       for (const End& end : ends_[v]) {
@@ -971,8 +1022,13 @@ class Decomposer {
         p.join(p.base[e], p.base[e] + count);  // a closed loop: its first and last intervals meet
         continue;
       }
-      if (!vertex_cut(edge.from)) p.join(edge.from, p.base[e]);
-      if (!vertex_cut(edge.to)) p.join(edge.to, p.base[e] + count);
+      const int from = end_vertex(static_cast<int>(e), true), to = end_vertex(static_cast<int>(e), false);
+      if (contracted_[e]) {
+        for (int i = 0; i <= count; ++i) p.join(from, p.base[e] + i);
+        continue;
+      }
+      if (!vertex_cut(from)) p.join(from, p.base[e]);
+      if (!vertex_cut(to)) p.join(to, p.base[e] + count);
     }
     return p;
   }
@@ -1013,6 +1069,7 @@ class Decomposer {
     }
     std::set<std::tuple<int, bool, int>> visited;  // (edge, forward, interval)
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      if (contracted_[e]) continue;
       const int intervals = static_cast<int>(p.cuts[e].size()) + 1;
       for (int i = 0; i < intervals; ++i) {
         for (const bool forward : {true, false}) {
@@ -1058,7 +1115,7 @@ class Decomposer {
       } else if (closed(e)) {
         i = fwd ? 0 : count;  // round the loop into its first (last) interval
       } else {
-        const int v = fwd ? axis_.edges[e].to : axis_.edges[e].from;
+        const int v = end_vertex(e, !fwd);
         const bool at_start = !fwd;
         if (vertex_cut(v)) {
           o.items.push_back(vertex_item(v, e, at_start));
@@ -1262,6 +1319,7 @@ class Decomposer {
     };
     std::vector<Candidate> intervals;
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      if (contracted_[e]) continue;
       const int count = static_cast<int>(p.cuts[e].size());
       for (int i = 0; i <= count; ++i) {
         const double lo = interval_start(p, static_cast<int>(e), i), hi = interval_end(p, static_cast<int>(e), i);
@@ -1297,7 +1355,7 @@ class Decomposer {
         const bool at_cut = low ? c.interval > 0 : c.interval < count;
         if (!at_cut && edge.from < 0) return p.base[c.edge];  // round a closed loop
         if (at_cut) return fresh++;
-        const int v = low ? edge.from : edge.to;
+        const int v = end_vertex(c.edge, low);
         return vertex_cut(v) ? fresh++ : v;
       };
       const int a = find(node(true)), b = find(node(false));
@@ -1327,12 +1385,20 @@ class Decomposer {
         splits_.push_back({{c.point.right.point, c.point.p, c.point.left.point}, c.reason});
         continue;
       }
-      // A fixed junction: one radius to every place it touches.
-      const MedialVertex& v = axis_.vertices[c.vertex];
-      for (const BoundaryPlace& t : v.touches) {
+      // A fixed junction (with any junction at the same point): one radius
+      // to every place it touches.
+      std::vector<Vec2> touched;
+      for (std::size_t w = 0; w < axis_.vertices.size(); ++w) {
+        if (rep_[w] != c.vertex) continue;
+        for (const BoundaryPlace& t : axis_.vertices[w].touches) {
+          if (std::none_of(touched.begin(), touched.end(), [&](Vec2 q) { return distance(q, t.point) <= tol_; }))
+            touched.push_back(t.point);
+        }
+      }
+      for (const Vec2 t : touched) {
         c.splits.push_back(static_cast<int>(splits_.size()));
         split_owner_.push_back(static_cast<int>(ci));
-        splits_.push_back({{t.point, v.p}, c.reason});
+        splits_.push_back({{t, axis_.vertices[c.vertex].p}, c.reason});
       }
     }
   }
@@ -1614,6 +1680,8 @@ class Decomposer {
   BoundaryIndex index_;
   double tol_;
   std::map<std::pair<int, int>, int> corner_of_;
+  std::vector<int> rep_;          // per medial vertex, the one it stands with (coincident junctions)
+  std::vector<bool> contracted_;  // per medial edge: of no length, its ends one vertex
   std::vector<Location> locations_;
   std::vector<Unit> units_;
   std::vector<int> unit_of_;
