@@ -189,6 +189,9 @@ int main(int argc, char** argv) {
   } catch (const mm::InputError& e) {
     std::cerr << "medialmesh: " << e.what() << "\n";
     return 2;
+  } catch (const mm::SelfCheckError& e) {
+    std::cerr << "medialmesh: " << e.what() << "\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "medialmesh: internal error: " << e.what() << "\n";
     return 3;

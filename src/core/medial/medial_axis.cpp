@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <sstream>
 
 #include "medial/nearest_boundary.hpp"
 #include "medial/voronoi_graph.hpp"
@@ -710,6 +711,14 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
     MedialAxis finer = Builder(face, fineness).build();
     const double finer_violation = violation(boundary, finer);
     if (finer_violation < best_violation) best = std::move(finer), best_violation = finer_violation;
+  }
+  // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask).
+  const double allowed = 1e-6 * face.size + face.tolerance;
+  if (best_violation > allowed) {
+    std::ostringstream check;
+    check << "medial axis: the boundary reaches " << best_violation << " into a medial disc (allowed " << allowed
+          << ")";
+    throw SelfCheckError(face.name, check.str());
   }
   return best;
 }
