@@ -174,9 +174,8 @@ TEST(ClosedCurves, AxisIsValidAndSingularitiesBalance) {
 }
 
 // The command-line tool never prints a wrong result: on faces the stages may
-// get wrong (today the first: a missed critical point, a flow switch of
-// k = -2, beside a curvature contact), it exits with code 3 and one line
-// naming the face and the check.
+// get wrong (today the first, whose axis falls into two pieces), it exits
+// with code 3 and one line naming the face and the check.
 TEST(ClosedCurves, CliReportsAFailedSelfCheckWithExitCode3) {
   const Handle(Geom_BSplineCurve) wavy = interpolated_outline(2.0);
   const double period = wavy->LastParameter() - wavy->FirstParameter();
