@@ -16,6 +16,7 @@ except ImportError as error:
 
 # re-exported so that callers need not import _medialmesh
 InputError = _medialmesh.InputError
+SelfCheckError = _medialmesh.SelfCheckError
 
 
 def boundary_model(face, name="face"):

@@ -1,7 +1,11 @@
 // medialmesh: the batch tool. Reads CAD files and reports on or draws planar faces.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <csignal>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -28,7 +32,8 @@ constexpr const char* kUsage =
     "--face takes a number or a comma-separated list (info only).\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
     "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n"
-    "decompose merges with F = 0.75 unless told otherwise.\n";
+    "decompose merges with F = 0.75 unless told otherwise.\n"
+    "--read-time-limit S gives up reading FILE after S seconds (60 if left out).\n";
 
 struct Options {
   std::string command;
@@ -40,6 +45,7 @@ struct Options {
   std::string blocks;
   std::optional<mm::MergeTolerance> merge;
   bool no_merge = false;
+  unsigned read_time_limit = 60;
 };
 
 struct UsageError {
@@ -111,6 +117,12 @@ Options parse(int argc, char** argv) {
       o.merge = a == "--merge" ? mm::MergeTolerance{*number, 0.0} : mm::MergeTolerance{0.75, *number};
     } else if (a == "--no-merge") {
       o.no_merge = true;
+    } else if (a == "--read-time-limit") {
+      const std::string& text = value();
+      const std::optional<double> seconds = parse_number(text);
+      if (!seconds || *seconds < 1 || *seconds > 86400)
+        throw UsageError{a + " needs seconds (1 to 86400), got '" + text + "'"};
+      o.read_time_limit = static_cast<unsigned>(*seconds);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError{"unknown option '" + a + "'"};
     } else if (o.file.empty()) {
@@ -183,8 +195,37 @@ void run_decompose(const Options& o, const mm::FaceModel& face) {
   }
 }
 
+// OCC's readers crash (null handles in a truncated BREP, a corrupted STEP)
+// or loop for ever on some malformed files, and a NaN in a file can crash its
+// projections. So a child process reads the file first, under a time limit;
+// only if it gets through (with faces or with an error) does this process
+// read it, to the same end.
+std::vector<mm::FaceModel> read_faces_guarded(const Options& o) {
+  std::cout.flush();
+  const pid_t child = fork();
+  if (child == 0) {
+    alarm(o.read_time_limit);  // SIGALRM ends the child
+    try {
+      mm::read_face_models(o.file, o.faces);
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  int status = 0;
+  if (child < 0 || waitpid(child, &status, 0) != child) throw std::runtime_error("cannot start a reading process");
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM) {
+    throw mm::InputError(o.file + ": cannot be read within " + std::to_string(o.read_time_limit) +
+                         " s (a malformed file?)");
+  }
+  if (WIFSIGNALED(status)) {
+    throw mm::InputError(o.file + ": cannot be read: the reader crashed on malformed data (signal " +
+                         std::to_string(WTERMSIG(status)) + ")");
+  }
+  return mm::read_face_models(o.file, o.faces);
+}
+
 int run(const Options& o) {
-  const std::vector<mm::FaceModel> faces = mm::read_face_models(o.file, o.faces);
+  const std::vector<mm::FaceModel> faces = read_faces_guarded(o);
   if (o.command == "info") {
     if (o.json) {
       nlohmann::json all = nlohmann::json::array();
@@ -229,6 +270,9 @@ int main(int argc, char** argv) {
   } catch (const mm::InputError& e) {
     std::cerr << "medialmesh: " << e.what() << "\n";
     return 2;
+  } catch (const mm::SelfCheckError& e) {
+    std::cerr << "medialmesh: " << e.what() << "\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "medialmesh: internal error: " << e.what() << "\n";
     return 3;

@@ -27,6 +27,7 @@
 #include <TopoDS_Wire.hxx>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <gp_Trsf2d.hxx>
@@ -65,17 +66,42 @@ const char* surface_type_name(GeomAbs_SurfaceType type) {
   }
 }
 
-BSplineCurve to_bspline(const Handle(Geom2d_BSplineCurve) & c) {
+// A non-periodic spline; `shift` is added to its parameters.
+BSplineCurve to_bspline(const Handle(Geom2d_BSplineCurve) & c, double shift = 0.0) {
   BSplineCurve result;
   result.degree = c->Degree();
   TColStd_Array1OfReal knots(1, c->NbPoles() + c->Degree() + 1);
   c->KnotSequence(knots);
-  for (int i = knots.Lower(); i <= knots.Upper(); ++i) result.knots.push_back(knots(i));
+  for (int i = knots.Lower(); i <= knots.Upper(); ++i) result.knots.push_back(knots(i) + shift);
   for (int i = 1; i <= c->NbPoles(); ++i) {
     result.poles.push_back(vec(c->Pole(i)));
     if (c->IsRational()) result.weights.push_back(c->Weight(i));
   }
   return result;
+}
+
+// A periodic spline as a non-periodic one with the same geometry whose
+// parameters run over one period from `first` once `shift` is added to them.
+// Not Segment(): on a whole period OCCT 7.6 returns, for some knot vectors, a
+// curve that does not close (its last pole is the periodic curve's first).
+// Instead a knot at `first` becomes the origin and the knots are unrolled
+// from there, which moves no point of the curve.
+Handle(Geom2d_BSplineCurve) opened_at(const Handle(Geom2d_BSplineCurve) & periodic, double first, double& shift) {
+  Handle(Geom2d_BSplineCurve) c = Handle(Geom2d_BSplineCurve)::DownCast(periodic->Copy());
+  const double period = c->LastParameter() - c->FirstParameter();
+  double start = first;
+  c->PeriodicNormalization(start);
+  c->InsertKnot(start, 1, 1e-12 * period);  // nothing changes if a knot is there already
+  int origin = c->FirstUKnotIndex();
+  for (int i = origin + 1; i < c->LastUKnotIndex(); ++i) {
+    if (std::abs(std::remainder(c->Knot(i) - start, period)) <
+        std::abs(std::remainder(c->Knot(origin) - start, period)))
+      origin = i;
+  }
+  c->SetOrigin(origin);
+  c->SetNotPeriodic();
+  shift = period * std::round((first - c->FirstParameter()) / period);
+  return c;
 }
 
 // The exact 2-D curve of an edge on [first, last]; may re-parametrise, so it
@@ -101,9 +127,10 @@ Curve to_curve(Handle(Geom2d_Curve) c, double& first, double& last) {
     return to_bspline(Geom2dConvert::CurveToBSplineCurve(bezier));
   }
   if (auto bspline = Handle(Geom2d_BSplineCurve)::DownCast(c)) {
-    // A periodic spline is cut to the edge's range so the own evaluator sees a clamped one.
-    if (bspline->IsPeriodic()) bspline = Geom2dConvert::SplitBSplineCurve(bspline, first, last, 1e-12);
-    return to_bspline(bspline);
+    if (!bspline->IsPeriodic()) return to_bspline(bspline);
+    double shift = 0.0;
+    const Handle(Geom2d_BSplineCurve) opened = opened_at(bspline, first, shift);
+    return to_bspline(opened, shift);
   }
   return OtherCurve{c->DynamicType()->Name(), [c](double t) {
                       gp_Pnt2d p;

@@ -41,6 +41,7 @@ py::object face_dict(const mm::FaceModel& face) {
 PYBIND11_MODULE(_medialmesh, m) {
   m.doc() = "MedialMesh core: boundary model, medial axis and singularities of planar faces";
   py::register_exception<mm::InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<mm::SelfCheckError>(m, "SelfCheckError", PyExc_RuntimeError);
 
   m.def(
       "face_model",

@@ -20,19 +20,26 @@ BoundaryProbe::BoundaryProbe(const FaceModel& face) : index_(face) {
 }
 
 BoundaryPlace BoundaryProbe::nearest(Vec2 p) const {
-  // Refine from the nearest sample of every edge: a long straight edge has
-  // few samples, so a per-loop shortlist could miss it.
+  // Refine from every sample nearer than its neighbours on its edge: a long
+  // straight edge has few samples, so a per-loop shortlist could miss it, and
+  // one edge may pass p several times (a loop that is one closed curve), each
+  // time with a nearest point of its own, only one of which the nearest
+  // sample leads to.
   BoundaryPlace best;
   double best_distance = 1e300;
+  const auto consider = [&](const BoundaryPlace& candidate) {
+    if (distance(candidate.point, p) < best_distance) best = candidate, best_distance = distance(candidate.point, p);
+  };
   for (const auto& loop : loops_) {
     for (std::size_t i = 0; i < loop.size();) {
-      std::size_t nearest = i, j = i;
-      for (; j < loop.size() && loop[j].first.edge == loop[i].first.edge; ++j) {
-        if (distance(loop[j].second, p) < distance(loop[nearest].second, p)) nearest = j;
-      }
-      for (const BoundaryPlace& candidate : {loop[nearest].first, nearest_on_run(index_, loop[nearest].first, p)}) {
-        if (distance(candidate.point, p) < best_distance)
-          best = candidate, best_distance = distance(candidate.point, p);
+      std::size_t j = i;
+      while (j < loop.size() && loop[j].first.edge == loop[i].first.edge) ++j;
+      for (std::size_t k = i; k < j; ++k) {
+        const double d = distance(loop[k].second, p);
+        if ((k > i && distance(loop[k - 1].second, p) < d) || (k + 1 < j && distance(loop[k + 1].second, p) < d))
+          continue;
+        consider(loop[k].first);
+        consider(nearest_on_run(index_, loop[k].first, p));
       }
       i = j;
     }

@@ -2,6 +2,7 @@
 // Poincare-Hopf invariant on random faces, and merging.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "face_builders.hpp"
@@ -96,6 +97,23 @@ TEST(MeshFlow, ConcaveCornersAddNoSpuriousSingularities) {
       flow_of(face({polygon({{0, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 3}, {1, 3}, {1, 1}, {0, 1}})})).singularities.empty());
   EXPECT_TRUE(flow_of(face({polygon({{0, 0}, {4, 0}, {4, 2}, {2.3, 2}, {2.3, 1.4}, {1.7, 1.4}, {1.7, 2}, {0, 2}})}))
                   .singularities.empty());
+}
+
+// An axis that does not balance (the square's centre junction cut off from
+// its four edges) is an error naming the face and the check, not a result.
+TEST(MeshFlow, UnbalancedResultIsASelfCheckError) {
+  const FaceModel square = face({polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}})}, "the square");
+  MedialAxis axis = compute_medial_axis(square);
+  const auto centre = std::find_if(axis.vertices.begin(), axis.vertices.end(),
+                                   [](const MedialVertex& v) { return v.edges.size() == 4; });
+  ASSERT_NE(centre, axis.vertices.end());
+  centre->edges.clear();
+  try {
+    compute_mesh_flow(square, axis);
+    FAIL() << "no SelfCheckError";
+  } catch (const SelfCheckError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("the square: self-check failed: mesh flow: sum of k ", 0), 0u) << e.what();
+  }
 }
 
 TEST(MeshFlow, AnnulusHasNone) {

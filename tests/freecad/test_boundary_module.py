@@ -73,6 +73,11 @@ class TestCompiledModule(unittest.TestCase):
         self.assertIs(MedialMesh.InputError, _medialmesh.InputError)
         self.assertTrue(issubclass(MedialMesh.InputError, ValueError))
 
+    def test_self_check_error_is_a_runtime_error(self):
+        self.assertIs(MedialMesh.SelfCheckError, _medialmesh.SelfCheckError)
+        self.assertTrue(issubclass(MedialMesh.SelfCheckError, RuntimeError))
+        self.assertFalse(issubclass(MedialMesh.SelfCheckError, MedialMesh.InputError))
+
 
 class TestReferenceFaces(unittest.TestCase):
 

@@ -83,12 +83,13 @@ double discretised_area(const TopoDS_Face& face, int points_per_edge) {
   return result;
 }
 
-CliResult run_cli(const std::string& arguments) {
+CliResult run_cli(const std::string& arguments, int time_limit) {
   // One file per process and call: CTest runs tests in parallel processes.
   static int calls = 0;
   const std::string err_path =
       scratch_dir() + "/cli_stderr_" + std::to_string(getpid()) + "_" + std::to_string(++calls) + ".txt";
-  const std::string command = std::string(MEDIALMESH_CLI) + " " + arguments + " 2>" + err_path;
+  const std::string limit = time_limit > 0 ? "timeout -s KILL " + std::to_string(time_limit) + " " : "";
+  const std::string command = limit + MEDIALMESH_CLI + " " + arguments + " 2>" + err_path;
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);

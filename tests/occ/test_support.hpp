@@ -29,6 +29,8 @@ struct CliResult {
   std::string out;
   std::string err;
 };
-CliResult run_cli(const std::string& arguments);
+// Runs the command-line tool; with a time limit (seconds) it is killed after
+// that long, and the exit code is then 137.
+CliResult run_cli(const std::string& arguments, int time_limit = 0);
 
 }  // namespace mm::test

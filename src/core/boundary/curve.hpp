@@ -40,8 +40,10 @@ struct EllipseCurve {
   int sense = 1;
 };
 
-// Non-periodic (rational) B-spline; knots are the full clamped sequence with
-// repeats, weights empty for a polynomial curve. Bezier curves come as this too.
+// Non-periodic (rational) B-spline on [knots[degree], knots[poles]]: knots
+// are the full sequence with repeats, clamped or not (a periodic curve comes
+// unrolled from its seam), weights empty for a polynomial curve. Bezier
+// curves come as this too.
 struct BSplineCurve {
   int degree = 1;
   std::vector<double> knots;

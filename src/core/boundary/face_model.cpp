@@ -95,13 +95,15 @@ Vec2 evaluate_point(const BoundaryEdge& edge, double t) {
   return evaluate(edge.curve, t).p;
 }
 
-// Rough bounding-box diagonal, used to scale tolerances before anything is checked.
+// Rough bounding-box diagonal, used to scale tolerances before anything is
+// checked; NaN if a point is not finite (a NaN in a file).
 double rough_size(const RawFace& raw) {
   Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
   for (const auto& loop : raw.loops) {
     for (const auto& edge : loop) {
       for (int i = 0; i <= 16; ++i) {
         const Vec2 p = evaluate_point(edge, edge.t_start + (edge.t_end - edge.t_start) * i / 16.0);
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) return std::nan("");
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
       }
@@ -416,7 +418,8 @@ FaceModel build_face_model(RawFace raw) {
     if (loop.empty()) throw InputError(name + ": face has an empty wire");
   }
   const double size = rough_size(raw);
-  if (!(size > 0.0) || !std::isfinite(size)) throw InputError(name + ": face has no area");
+  if (std::isnan(size) || std::isinf(size)) throw InputError(name + ": a curve has a NaN or infinite coordinate");
+  if (!(size > 0.0)) throw InputError(name + ": face has no area");
   const double tolerance = std::max(raw.tolerance, 1e-9 * size);
 
   FaceModel face;
@@ -467,6 +470,11 @@ FaceModel build_face_model(RawFace raw) {
     for (std::size_t i = 1; i + 1 < pts.size(); ++i) spread += std::abs(cross(pts[i] - pts[0], pts[i + 1] - pts[0]));
   }
   if (!(spread > 1e-12 * size * size)) throw InputError(name + ": face has no area");
+  // Boost.Geometry's predicates compare with fixed epsilons: judged on a face of
+  // size 1 near the origin, a face of 1e-6 or 1e6 gets the same answer.
+  const Vec2 origin = polylines.front().front();
+  for (auto& loop : polylines)
+    for (Vec2& p : loop) p = (p - origin) / size;
   const std::string problem = find_region_problem(polylines);
   if (!problem.empty()) throw InputError(name + ": " + problem);
   if (!(face.area > 1e-12 * size * size)) throw InputError(name + ": face has no area");

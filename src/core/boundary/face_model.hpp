@@ -17,6 +17,14 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A stage's result failed the stage's own check: a bug to report, never a
+// result to pass on. The message names the face and the check.
+class SelfCheckError : public std::runtime_error {
+ public:
+  SelfCheckError(const std::string& face, const std::string& check)
+      : std::runtime_error(face + ": self-check failed: " + check) {}
+};
+
 // One edge of a loop, traversed from t_start to t_end (t_end < t_start when
 // the loop runs against the curve's direction).
 struct BoundaryEdge {

@@ -41,7 +41,8 @@ namespace mm {
 
 namespace {
 
-// A block that fails its self-check: the process tries once more before giving up.
+// A block that fails its self-check (the message names the check): the
+// process tries once more before it gives up with a SelfCheckError.
 struct SelfCheckFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -154,7 +155,7 @@ class Decomposer {
                           "); every singularity that can be fixed was fixed instead");
         return d;
       } catch (const SelfCheckFailure&) {
-        throw std::runtime_error(first.what());
+        throw SelfCheckError(face_.name, first.what());
       }
     }
   }
@@ -1141,7 +1142,7 @@ class Decomposer {
       }
       if (e == e0 && fwd == fwd0 && i == i0) return o;
     }
-    throw SelfCheckFailure(face_.name + ": decomposition: a block outline does not close");
+    throw SelfCheckFailure("decomposition: a block outline does not close");
   }
 
   // The boundary place on the walking side at position s of interval i.
@@ -1613,15 +1614,13 @@ class Decomposer {
     for (const Outline& o : outlines) ++outline_count[o.component];
     double total = 0.0;
     for (const Outline& o : outlines) {
-      if (outline_count[o.component] != 1)
-        throw SelfCheckFailure(face_.name + ": decomposition self-check failed: a block is not simply connected");
+      if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
       if (sum != 4 + k_inside[o.component]) {
-        throw SelfCheckFailure(face_.name + ": decomposition self-check failed: the corners of a block sum to " +
-                               std::to_string(sum) + " quarter turns, its singularities need " +
-                               std::to_string(4 + k_inside[o.component]));
+        throw SelfCheckFailure("decomposition: the corners of a block sum to " + std::to_string(sum) +
+                               " quarter turns, its singularities need " + std::to_string(4 + k_inside[o.component]));
       }
       const auto it = unit_in.find(o.component);
       const bool convex =
@@ -1641,8 +1640,8 @@ class Decomposer {
       d.blocks.push_back(std::move(b));
     }
     if (std::abs(total - face_.area) > 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size) {
-      throw SelfCheckFailure(face_.name + ": decomposition self-check failed: the blocks' areas add up to " +
-                             std::to_string(total) + ", the face's is " + std::to_string(face_.area));
+      throw SelfCheckFailure("decomposition: the blocks' areas add up to " + std::to_string(total) +
+                             ", the face's is " + std::to_string(face_.area));
     }
     return d;
   }

@@ -85,10 +85,10 @@ struct Decomposition {
   std::vector<std::string> notes;  // what the process had to do, for the user
 };
 
-// Decomposes the face. Always returns a decomposition that tiles the face
+// Decomposes the face. Returns only a decomposition that tiles the face
 // (checked: block areas add up to the face's, every block's corner types
-// close up with the singularities it holds); throws std::runtime_error naming
-// the face and the check if that self-check ever fails.
+// close up with the singularities it holds); throws SelfCheckError naming
+// the face and the check when neither the process nor its fall-back passes.
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options);
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <sstream>
 
 #include "medial/nearest_boundary.hpp"
 #include "medial/voronoi_graph.hpp"
@@ -681,6 +682,45 @@ const char* medial_vertex_kind_name(MedialVertexKind kind) {
 
 namespace {
 
+// The axis of a face with h holes is one connected graph with h independent
+// cycles (a loop with no vertex counts as a vertex of its own); "" if so.
+std::string topology_problem(const MedialAxis& axis, int holes) {
+  UnionFind sets(axis.vertices.size());
+  int vertices = static_cast<int>(axis.vertices.size()), components = vertices;
+  for (const MedialEdge& e : axis.edges) {
+    if (e.from < 0) {
+      ++vertices, ++components;
+    } else if (sets.find(e.from) != sets.find(e.to)) {
+      sets.unite(e.from, e.to);
+      --components;
+    }
+  }
+  const int cycles = static_cast<int>(axis.edges.size()) - vertices + components;
+  if (components != 1) return "the axis falls into " + std::to_string(components) + " pieces";
+  if (cycles != holes)
+    return "the axis has " + std::to_string(cycles) + " cycles for " + std::to_string(holes) + " holes";
+  return "";
+}
+
+// The largest difference between a medial point's radius and its distance to
+// the boundary or to the places it touches.
+double radius_error(const NearestBoundary& boundary, const MedialAxis& axis) {
+  double worst = 0.0;
+  const auto off = [&](Vec2 p, double r, Vec2 q) { worst = std::max(worst, std::abs(r - distance(q, p))); };
+  for (const MedialVertex& v : axis.vertices) {
+    off(v.p, v.r, boundary.nearest(v.p).point);
+    for (const BoundaryPlace& t : v.touches) off(v.p, v.r, t.point);
+  }
+  for (const MedialEdge& e : axis.edges) {
+    for (const MedialPoint& p : e.points) {
+      off(p.p, p.r, boundary.nearest(p.p).point);
+      off(p.p, p.r, p.left.point);
+      off(p.p, p.r, p.right.point);
+    }
+  }
+  return worst;
+}
+
 double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
   double worst = 0.0;
   const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(boundary.nearest(p).point, p)); };
@@ -711,6 +751,17 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
     const double finer_violation = violation(boundary, finer);
     if (finer_violation < best_violation) best = std::move(finer), best_violation = finer_violation;
   }
+  // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
+  // both ways: no boundary inside a disc, and every disc touching it.
+  const double allowed = 1e-6 * face.size + face.tolerance;
+  if (const double error = radius_error(boundary, best); error > allowed) {
+    std::ostringstream check;
+    check << "medial axis: a medial point's distance to the boundary or to a place it touches is " << error
+          << " off its radius (allowed " << allowed << ")";
+    throw SelfCheckError(face.name, check.str());
+  }
+  if (const std::string problem = topology_problem(best, face.holes()); !problem.empty())
+    throw SelfCheckError(face.name, "medial axis: " + problem);
   return best;
 }
 

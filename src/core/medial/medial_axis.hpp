@@ -55,7 +55,9 @@ struct MedialAxis {
 // medial disc of the result holds boundary (by more than 1e-7 of the face
 // size plus its tolerance: the chords misled the topology near a nearly
 // degenerate spot), builds it again from finer chords, at most twice, and
-// keeps the best.
+// keeps the best. Throws SelfCheckError if the best still holds boundary by
+// more than 1e-6 of the face size plus its tolerance, or is not one connected
+// graph with a cycle round each hole.
 MedialAxis compute_medial_axis(const FaceModel& face);
 
 // How far the boundary reaches into the worst medial disc (vertex or edge

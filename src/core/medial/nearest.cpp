@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mm {
 namespace {
@@ -140,8 +141,19 @@ bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance
   return a.loop == b.loop && distance(a.point, b.point) <= tolerance;
 }
 
+namespace {
+
+// Distances from m agree to 1e-13 of the face size, or to what doubles hold
+// at m's distance from the origin (a tiny face far from it).
+double distance_tolerance(const BoundaryIndex& index, Vec2 m) {
+  return std::max(1e-13 * index.face().size,
+                  16 * std::numeric_limits<double>::epsilon() * (std::abs(m.x) + std::abs(m.y)));
+}
+
+}  // namespace
+
 Bisected bisect(const BoundaryIndex& index, Vec2 m, BoundaryPlace a, BoundaryPlace b) {
-  const double tolerance = 1e-13 * index.face().size;
+  const double tolerance = distance_tolerance(index, m);
   Bisected result;
   for (int i = 0; i < 60; ++i) {
     a = nearest_on_run(index, a, m);
@@ -163,7 +175,7 @@ Bisected bisect(const BoundaryIndex& index, Vec2 m, BoundaryPlace a, BoundaryPla
 }
 
 Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& start) {
-  const double tolerance = 1e-13 * index.face().size;
+  const double tolerance = distance_tolerance(index, m);
   std::vector<BoundaryPlace> places = start;
   Equidistant result;
   for (int i = 0; i < 60; ++i) {

@@ -48,16 +48,21 @@ NearestBoundary::~NearestBoundary() = default;
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   std::vector<std::pair<RPoint, BoundaryPlace>> found;
   samples_->tree.query(bgi::nearest(RPoint(p.x, p.y), 6), std::back_inserter(found));
-  // Refine once per edge: the nearest samples mostly lie on one or two edges.
+  // Refine once per stretch of boundary: samples near a sample already
+  // refined lead to the same place, but one edge may pass p twice (a loop
+  // that is a single closed curve), each time with a nearest point of its own.
+  const double same_stretch = 2e-2 * index_.face().size;
   BoundaryPlace best;
   double best_distance = 1e300;
-  std::vector<std::pair<int, int>> refined;
+  std::vector<BoundaryPlace> refined;
   for (const auto& [point, place] : found) {
     const double d = distance(place.point, p);
     if (d < best_distance) best = place, best_distance = d;
-    const std::pair<int, int> edge{place.loop, place.edge};
-    if (std::find(refined.begin(), refined.end(), edge) != refined.end()) continue;
-    refined.push_back(edge);
+    const auto near = [&](const BoundaryPlace& r) {
+      return r.loop == place.loop && r.edge == place.edge && distance(r.point, place.point) <= same_stretch;
+    };
+    if (std::any_of(refined.begin(), refined.end(), near)) continue;
+    refined.push_back(place);
     const BoundaryPlace exact = nearest_on_run(index_, place, p);
     if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 #include "medial/nearest.hpp"
@@ -394,7 +395,21 @@ int MeshFlow::sum_k() const {
 }
 
 MeshFlow compute_mesh_flow(const FaceModel& face, const MedialAxis& axis) {
-  return FlowBuilder(face, axis).build();
+  MeshFlow flow = FlowBuilder(face, axis).build();
+  // A flow switch changes n by one; a larger jump is a critical point the
+  // bisection missed.
+  for (const Singularity& s : flow.singularities) {
+    if (s.at == SingularitySource::FlowSwitch && std::abs(s.k) > 1) {
+      std::ostringstream check;
+      check << "mesh flow: a flow switch of k = " << s.k << " at (" << s.p.x << ", " << s.p.y << ")";
+      throw SelfCheckError(face.name, check.str());
+    }
+  }
+  if (flow.sum_k() != predicted_sum_k(face)) {
+    throw SelfCheckError(face.name, "mesh flow: sum of k " + std::to_string(flow.sum_k()) +
+                                        " is not the Poincare-Hopf total " + std::to_string(predicted_sum_k(face)));
+  }
+  return flow;
 }
 
 }  // namespace mm

@@ -60,8 +60,8 @@ struct MeshFlow {
 // touching point is a concave corner (the radius turned onto the nearest arm
 // of the corner's cross), and the singularities from the flux balance at the
 // only places it can be unbalanced: the switch points (located by bisection
-// on the exact medial axis) and the medial vertices. The sum of k always
-// equals predicted_sum_k(face).
+// on the exact medial axis) and the medial vertices. Throws SelfCheckError
+// if the sum of k is not predicted_sum_k(face) or a flow switch has |k| > 1.
 MeshFlow compute_mesh_flow(const FaceModel& face, const MedialAxis& axis);
 
 }  // namespace mm

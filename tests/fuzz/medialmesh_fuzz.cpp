@@ -1,0 +1,451 @@
+// medialmesh_fuzz: random faces through every stage that exists.
+//
+//   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS]
+//
+// Builds N random OCC faces of five families (filleted polygons with holes,
+// plates with notches and slots, closed B-spline outlines, thin strips with
+// tiny edges, faces bounded by elliptic arcs), each placed anywhere in 3-D at
+// a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
+// a time limit: BREP text -> boundary model -> medial axis -> mesh flow, with
+// checks that do not trust the stages (OCC's area, the number of holes, the
+// test suite's medial axis checks, Poincare-Hopf). Counts ok, clean errors
+// (InputError), failed self-checks, internal errors, crashes, hangs and
+// broken invariants, writes every face that is not ok as
+// DIR/<family>_<seed>_<i>.brep with a line in DIR/fuzz.log, and exits with 1
+// if any face crashed, hung, broke an invariant or hit an internal error.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepFilletAPI_MakeFillet2d.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <GC_MakeArcOfCircle.hxx>
+#include <GC_MakeArcOfEllipse.hxx>
+#include <GC_MakeSegment.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomAPI_Interpolate.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gp_Elips.hxx>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "medial/medial_axis.hpp"
+#include "medial_checks.hpp"
+#include "occ/occ_reader.hpp"
+#include "singularity/mesh_flow.hpp"
+
+namespace {
+
+using Rng = std::mt19937_64;
+
+double uniform(Rng& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+int integer(Rng& rng, int lo, int hi) {  // lo..hi inclusive
+  return std::uniform_int_distribution<int>(lo, hi)(rng);
+}
+
+gp_Pnt point(double x, double y) {
+  return gp_Pnt(x, y, 0);
+}
+
+TopoDS_Wire polygon_wire(const std::vector<gp_Pnt>& points) {
+  BRepBuilderAPI_MakePolygon polygon;
+  for (const gp_Pnt& p : points) polygon.Add(p);
+  polygon.Close();
+  return polygon.Wire();
+}
+
+TopoDS_Wire circle_wire(double x, double y, double r) {
+  return BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(new Geom_Circle(gp_Ax2(point(x, y), gp::DZ()), r)).Edge())
+      .Wire();
+}
+
+// A face from an outer wire and holes (each turned clockwise).
+TopoDS_Face with_holes(const TopoDS_Face& outer, const std::vector<TopoDS_Wire>& holes) {
+  if (holes.empty()) return outer;
+  BRepBuilderAPI_MakeFace face(outer);
+  for (const TopoDS_Wire& hole : holes) face.Add(TopoDS::Wire(hole.Reversed()));
+  return face.Face();
+}
+
+// Star-shaped polygon, corners filleted at random radii, up to two round holes.
+TopoDS_Face filleted_polygon(Rng& rng) {
+  const int sides = integer(rng, 3, 10);
+  std::vector<gp_Pnt> points;
+  for (int i = 0; i < sides; ++i) {
+    const double a = (i + uniform(rng, 0.15, 0.85)) * 2 * M_PI / sides, r = uniform(rng, 0.6, 1.0);
+    points.push_back(point(r * std::cos(a), r * std::sin(a)));
+  }
+  TopoDS_Face face = BRepBuilderAPI_MakeFace(polygon_wire(points)).Face();
+  BRepFilletAPI_MakeFillet2d fillets(face);
+  TopTools_IndexedMapOfShape vertices;
+  TopExp::MapShapes(face, TopAbs_VERTEX, vertices);
+  double shortest = 1e300;
+  for (int i = 0; i < sides; ++i) shortest = std::min(shortest, points[i].Distance(points[(i + 1) % sides]));
+  for (int i = 1; i <= vertices.Extent(); ++i) {
+    if (uniform(rng, 0, 1) < 0.8) fillets.AddFillet(TopoDS::Vertex(vertices(i)), shortest * uniform(rng, 0.02, 0.3));
+  }
+  fillets.Build();
+  if (fillets.IsDone()) face = TopoDS::Face(fillets.Shape());
+  std::vector<TopoDS_Wire> holes;
+  // From five sides on the inscribed radius exceeds 0.48: holes reaching 0.3 fit.
+  const int count = sides >= 5 ? integer(rng, 0, 2) : 0;
+  for (int h = 0; h < count; ++h) {
+    holes.push_back(circle_wire((h == 0 ? -0.2 : 0.2) + uniform(rng, -0.02, 0.02), uniform(rng, -0.05, 0.05),
+                                uniform(rng, 0.02, 0.1)));
+  }
+  return with_holes(face, holes);
+}
+
+// A slot (two half circles joined by straight sides) along x.
+TopoDS_Wire slot_wire(double cx, double cy, double length, double radius) {
+  const double x0 = cx - length / 2, x1 = cx + length / 2;
+  BRepBuilderAPI_MakeWire wire;
+  wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(point(x0, cy - radius), point(x1, cy - radius)).Value()).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(
+               GC_MakeArcOfCircle(point(x1, cy - radius), point(x1 + radius, cy), point(x1, cy + radius)).Value())
+               .Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(point(x1, cy + radius), point(x0, cy + radius)).Value()).Edge());
+  wire.Add(BRepBuilderAPI_MakeEdge(
+               GC_MakeArcOfCircle(point(x0, cy + radius), point(x0 - radius, cy), point(x0, cy - radius)).Value())
+               .Edge());
+  return wire.Wire();
+}
+
+// A rectangle with rectangular notches in its long sides and slots in between.
+TopoDS_Face notched_plate(Rng& rng) {
+  const double width = uniform(rng, 2, 4), height = uniform(rng, 1, 2);
+  const auto notches = [&](bool top) {
+    std::vector<gp_Pnt> pts;
+    const int count = integer(rng, 0, 3);
+    for (int i = 0; i < count; ++i) {
+      const double slot = width / count, x1 = slot * (i + uniform(rng, 0.1, 0.4)),
+                   x2 = slot * (i + uniform(rng, 0.5, 0.9)), depth = uniform(rng, 0.05, 0.3) * height;
+      const double y0 = top ? height : 0.0, y1 = top ? height - depth : depth;
+      for (const gp_Pnt& p : {point(x1, y0), point(x1, y1), point(x2, y1), point(x2, y0)}) pts.push_back(p);
+    }
+    if (top) std::reverse(pts.begin(), pts.end());
+    return pts;
+  };
+  std::vector<gp_Pnt> outline{point(0, 0)};
+  for (const gp_Pnt& p : notches(false)) outline.push_back(p);
+  outline.push_back(point(width, 0));
+  outline.push_back(point(width, height));
+  for (const gp_Pnt& p : notches(true)) outline.push_back(p);
+  outline.push_back(point(0, height));
+  std::vector<TopoDS_Wire> holes;
+  const int slots = integer(rng, 0, 2);
+  for (int s = 0; s < slots; ++s) {
+    const double third = width / 3, radius = uniform(rng, 0.02, 0.08) * height;
+    holes.push_back(
+        slot_wire(third * (s + 1), height * uniform(rng, 0.45, 0.55), third * uniform(rng, 0.1, 0.6), radius));
+  }
+  return with_holes(BRepBuilderAPI_MakeFace(polygon_wire(outline)).Face(), holes);
+}
+
+// A smooth outline through points of a random star, periodic or closed at
+// one point (a corner there), its knots maybe moved; maybe a round hole.
+TopoDS_Face bspline_outline(Rng& rng) {
+  const int n = integer(rng, 8, 30);
+  std::array<double, 4> amplitude{}, phase{};
+  for (int h = 0; h < 4; ++h) amplitude[h] = uniform(rng, 0, 0.07), phase[h] = uniform(rng, 0, 2 * M_PI);
+  const double stretch = uniform(rng, 0.5, 1.0);
+  const bool periodic = uniform(rng, 0, 1) < 0.6;
+  Handle(TColgp_HArray1OfPnt) points = new TColgp_HArray1OfPnt(1, periodic ? n : n + 1);
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    double r = 1;
+    for (int h = 0; h < 4; ++h) r += amplitude[h] * std::cos((h + 2) * a + phase[h]);
+    points->SetValue(i + 1, point(r * std::cos(a), stretch * r * std::sin(a)));
+  }
+  if (!periodic) points->SetValue(n + 1, points->Value(1));
+  GeomAPI_Interpolate interpolate(points, periodic, 1e-9);
+  interpolate.Perform();
+  if (!interpolate.IsDone()) throw Standard_Failure("interpolation failed");
+  Handle(Geom_BSplineCurve) curve = interpolate.Curve();
+  if (uniform(rng, 0, 1) < 0.5) {
+    TColStd_Array1OfReal knots(1, curve->NbKnots());
+    curve->Knots(knots);
+    const double shift = uniform(rng, -10, 10);
+    for (double& k : knots) k += shift;
+    curve->SetKnots(knots);
+  }
+  const TopoDS_Face face =
+      BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(curve).Edge()).Wire()).Face();
+  std::vector<TopoDS_Wire> holes;
+  if (uniform(rng, 0, 1) < 0.4) holes.push_back(circle_wire(uniform(rng, -0.1, 0.1), 0, 0.2 * stretch));
+  return with_holes(face, holes);
+}
+
+// A long thin strip with tiny steps and notches along one side and maybe a
+// tiny chamfer at a corner.
+TopoDS_Face thin_strip(Rng& rng) {
+  const double length = 1, height = length / uniform(rng, 20, 200);
+  std::vector<gp_Pnt> outline{point(0, 0)};
+  const int notches = integer(rng, 1, 4);
+  for (int i = 0; i < notches; ++i) {
+    const double x = length * (i + uniform(rng, 0.2, 0.7)) / notches, w = length * std::pow(10, uniform(rng, -3, -2)),
+                 depth = height * uniform(rng, 0.05, 0.3);
+    for (const gp_Pnt& p : {point(x, 0), point(x, depth), point(x + w, depth), point(x + w, 0)}) outline.push_back(p);
+  }
+  if (uniform(rng, 0, 1) < 0.5) {
+    const double cut = height * 1e-2;
+    outline.push_back(point(length - cut, 0));
+    outline.push_back(point(length, cut));
+  } else {
+    outline.push_back(point(length, 0));
+  }
+  outline.push_back(point(length, height));
+  outline.push_back(point(0, height));
+  return BRepBuilderAPI_MakeFace(polygon_wire(outline)).Face();
+}
+
+// Faces bounded by elliptic arcs: an ellipse with an elliptic hole, a half
+// ellipse on its chord, or a rectangle with an elliptic top.
+TopoDS_Face elliptic(Rng& rng) {
+  const double a = uniform(rng, 1, 3), b = uniform(rng, 0.3, 1);
+  const gp_Elips ellipse(gp_Ax2(point(0, 0), gp::DZ(), gp::DX()), a, b);
+  const int kind = integer(rng, 0, 2);
+  if (kind == 0) {
+    const TopoDS_Face outer =
+        BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(ellipse).Edge()).Wire()).Face();
+    if (uniform(rng, 0, 1) < 0.3) return outer;
+    const double f = uniform(rng, 0.2, 0.6), turn = uniform(rng, 0, M_PI);
+    const double ha = std::max(f * a, f * b * 1.0001), hb = f * b;
+    const gp_Elips hole(gp_Ax2(point(0, 0), gp::DZ(), gp_Dir(std::cos(turn), std::sin(turn), 0)), ha, hb);
+    if (ha > b * 0.9) return outer;  // a turned hole must stay inside
+    return with_holes(outer, {BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(hole).Edge()).Wire()});
+  }
+  BRepBuilderAPI_MakeWire wire;
+  if (kind == 1) {
+    const double from = uniform(rng, 0, M_PI), to = from + uniform(rng, 0.5, 1.5) * M_PI;
+    Handle(Geom_TrimmedCurve) arc = GC_MakeArcOfEllipse(ellipse, from, to, true).Value();
+    wire.Add(BRepBuilderAPI_MakeEdge(arc).Edge());
+    wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(arc->EndPoint(), arc->StartPoint()).Value()).Edge());
+  } else {
+    const double h = uniform(rng, 0.2, 1.5);
+    const gp_Elips top(gp_Ax2(point(0, h), gp::DZ(), gp::DX()), a, b);
+    wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(point(-a, h), point(-a, 0)).Value()).Edge());
+    wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(point(-a, 0), point(a, 0)).Value()).Edge());
+    wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeSegment(point(a, 0), point(a, h)).Value()).Edge());
+    wire.Add(BRepBuilderAPI_MakeEdge(GC_MakeArcOfEllipse(top, 0.0, M_PI, true).Value()).Edge());
+  }
+  return BRepBuilderAPI_MakeFace(wire.Wire()).Face();
+}
+
+const std::vector<std::pair<std::string, TopoDS_Face (*)(Rng&)>> kFamilies = {{"filleted", filleted_polygon},
+                                                                              {"plate", notched_plate},
+                                                                              {"bspline", bspline_outline},
+                                                                              {"strip", thin_strip},
+                                                                              {"elliptic", elliptic}};
+
+// Turned about a random axis, scaled by 1e-3 to 1e4, moved up to 100 times that.
+TopoDS_Face placed(const TopoDS_Face& face, Rng& rng) {
+  const double scale = std::pow(10.0, uniform(rng, -3, 4));
+  gp_Dir axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1) + 1e-3);
+  gp_Trsf turn, grow, move;
+  turn.SetRotation(gp_Ax1(gp::Origin(), axis), uniform(rng, 0, 2 * M_PI));
+  grow.SetScale(gp::Origin(), scale);
+  const double reach = scale * std::pow(10.0, uniform(rng, -2, 2));
+  move.SetTranslation(gp_Vec(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)) * reach);
+  return TopoDS::Face(BRepBuilderAPI_Transform(face, move * grow * turn, true).Shape());
+}
+
+enum Outcome { kOk, kInputError, kSelfCheck, kBroken, kInternal, kCrash, kHang, kNotBuilt, kOutcomes };
+const char* const kOutcomeNames[kOutcomes] = {
+    "ok",   "clean error (InputError)", "self-check error", "broken invariant", "internal error", "crash",
+    "hang", "not built (generator)"};
+
+struct Generated {
+  std::string family;
+  TopoDS_Face face;
+};
+
+Generated generate(std::uint64_t seed, int i) {
+  Rng rng(seed * 1000003 + i);
+  const auto& [family, make] = kFamilies[i % kFamilies.size()];
+  return {family, placed(make(rng), rng)};
+}
+
+// Runs the stages on one face and checks them; the outcome and a message.
+std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::string& brep, const std::string& name) {
+  if (!BRepCheck_Analyzer(occ).IsValid()) return {kNotBuilt, "OCC finds the generated face invalid"};
+  mm::FaceModel face;
+  try {
+    face = mm::face_model_from_brep_string(brep, name);
+  } catch (const mm::InputError& e) {
+    return {kInputError, e.what()};
+  }
+  int wires = 0;
+  for (TopExp_Explorer it(occ, TopAbs_WIRE); it.More(); it.Next()) ++wires;
+  if (face.holes() != wires - 1) {
+    return {kBroken, "holes " + std::to_string(face.holes()) + ", OCC's wires " + std::to_string(wires)};
+  }
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(occ, props, 1e-10);
+  if (std::abs(face.area - props.Mass()) > 1e-6 * props.Mass()) {
+    std::ostringstream m;
+    m << "area " << face.area << ", OCC's " << props.Mass();
+    return {kBroken, m.str()};
+  }
+  try {
+    const mm::MedialAxis axis = mm::compute_medial_axis(face);
+    const ::testing::AssertionResult valid = mm::test::medial_axis_is_valid(face, axis, 1e-6);
+    if (!valid)
+      return {kBroken, std::string("medial axis passed its self-check but not the tests' checks: ") + valid.message()};
+    const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+    if (flow.sum_k() != mm::predicted_sum_k(face)) {
+      return {kBroken,
+              "sum of k " + std::to_string(flow.sum_k()) + ", predicted " + std::to_string(mm::predicted_sum_k(face))};
+    }
+  } catch (const mm::SelfCheckError& e) {
+    return {kSelfCheck, e.what()};
+  } catch (const mm::InputError& e) {
+    return {kInputError, e.what()};
+  }
+  return {kOk, ""};
+}
+
+struct Options {
+  std::uint64_t seed = 1;
+  int count = 100;
+  std::string out = "fuzz_out";
+  unsigned time_limit = 60;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+    const std::string v = argv[++i];
+    if (a == "--seed") {
+      o.seed = std::stoull(v);
+    } else if (a == "--count") {
+      o.count = std::stoi(v);
+    } else if (a == "--out") {
+      o.out = v;
+    } else if (a == "--time-limit") {
+      o.time_limit = static_cast<unsigned>(std::stoul(v));
+    } else {
+      throw std::invalid_argument("unknown option " + a);
+    }
+  }
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    o = parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "medialmesh_fuzz: " << e.what()
+              << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS]\n";
+    return 2;
+  }
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  std::filesystem::create_directories(o.out);
+  std::ofstream log(o.out + "/fuzz.log", std::ios::app);
+  std::array<int, kOutcomes> counts{};
+  std::map<std::string, std::array<int, kOutcomes>> by_family;
+  for (int i = 0; i < o.count; ++i) {
+    const std::string family = kFamilies[i % kFamilies.size()].first;
+    const std::string name = family + "_" + std::to_string(o.seed) + "_" + std::to_string(i);
+    const std::string path = o.out + "/" + name + ".brep";
+    int pipe_fds[2];
+    if (pipe(pipe_fds) != 0) return 3;
+    const pid_t child = fork();
+    if (child == 0) {
+      // The child writes the face first, so that a crash or hang leaves it behind.
+      close(pipe_fds[0]);
+      alarm(o.time_limit);
+      std::pair<Outcome, std::string> result;
+      Generated g;
+      std::ostringstream brep;
+      try {
+        g = generate(o.seed, i);
+        BRepTools::Write(g.face, brep);
+      } catch (const Standard_Failure& e) {
+        result = {kNotBuilt, std::string("OCC: ") + e.GetMessageString()};
+      }
+      if (result.second.empty()) {
+        std::ofstream(path) << brep.str();
+        try {
+          result = run_stages(g.face, brep.str(), path);
+        } catch (const Standard_Failure& e) {
+          result = {kInternal, std::string("OCC: ") + e.GetMessageString()};
+        } catch (const std::exception& e) {
+          result = {kInternal, e.what()};
+        }
+      }
+      std::string message = result.second;
+      std::replace(message.begin(), message.end(), '\n', ' ');
+      if (write(pipe_fds[1], message.data(), message.size()) < 0) _exit(kInternal);
+      _exit(result.first);
+    }
+    close(pipe_fds[1]);
+    std::string message;
+    char buffer[4096];
+    for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, n);
+    close(pipe_fds[0]);
+    int status = 0;
+    waitpid(child, &status, 0);
+    Outcome outcome = kCrash;
+    if (WIFEXITED(status) && WEXITSTATUS(status) < kOutcomes) outcome = static_cast<Outcome>(WEXITSTATUS(status));
+    if (WIFSIGNALED(status)) {
+      outcome = WTERMSIG(status) == SIGALRM ? kHang : kCrash;
+      message = "signal " + std::to_string(WTERMSIG(status));
+    }
+    ++counts[outcome];
+    ++by_family[family][outcome];
+    if (outcome == kOk || outcome == kNotBuilt) {
+      std::filesystem::remove(path);
+    } else {
+      log << path << ": " << kOutcomeNames[outcome] << ": " << message << "\n";
+    }
+  }
+  std::cout << "seed " << o.seed << ", " << o.count << " faces\n";
+  for (int k = 0; k < kOutcomes; ++k) {
+    std::cout << "  " << kOutcomeNames[k] << ": " << counts[k];
+    for (const auto& [family, c] : by_family) {
+      if (c[k]) std::cout << " " << family << "=" << c[k];
+    }
+    std::cout << "\n";
+  }
+  return counts[kCrash] + counts[kHang] + counts[kBroken] + counts[kInternal] > 0 ? 1 : 0;
+}
