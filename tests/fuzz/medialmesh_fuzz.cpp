@@ -6,9 +6,11 @@
 // plates with notches and slots, closed B-spline outlines, thin strips with
 // tiny edges, faces bounded by elliptic arcs), each placed anywhere in 3-D at
 // a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
-// a time limit: BREP text -> boundary model -> medial axis -> mesh flow, with
-// checks that do not trust the stages (OCC's area, the number of holes, the
-// test suite's medial axis checks, Poincare-Hopf). Counts ok, clean errors
+// a time limit: BREP text -> boundary model -> medial axis -> mesh flow ->
+// decomposition -> the face cut into block faces by OCC, with checks that do
+// not trust the stages (OCC's area, the number of holes, the test suite's
+// medial axis checks, Poincare-Hopf, the test suite's decomposition checks,
+// OCC's validity and area of the block faces). Counts ok, clean errors
 // (InputError), failed self-checks, internal errors, crashes, hangs and
 // broken invariants, writes every face that is not ok as
 // DIR/<family>_<seed>_<i>.brep with a line in DIR/fuzz.log, and exits with 1
@@ -61,9 +63,11 @@
 #include <string>
 #include <vector>
 
+#include "decomposition_checks.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
 #include "occ/occ_reader.hpp"
+#include "occ/occ_split.hpp"
 #include "singularity/mesh_flow.hpp"
 
 namespace {
@@ -330,6 +334,25 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
     if (flow.sum_k() != mm::predicted_sum_k(face)) {
       return {kBroken,
               "sum of k " + std::to_string(flow.sum_k()) + ", predicted " + std::to_string(mm::predicted_sum_k(face))};
+    }
+    const mm::Decomposition d = mm::decompose(face, axis, flow, {});
+    const std::vector<std::string> problems = mm::test::decomposition_problems(face, flow, d);
+    if (!problems.empty()) {
+      // A fallback that says it could not give a singularity its block is loud, not wrong.
+      return {d.fallback ? kSelfCheck : kBroken, "decomposition: " + problems.front()};
+    }
+    std::vector<std::vector<mm::Vec2>> lines;
+    for (const mm::Split& split : d.splits) lines.push_back(split.polyline);
+    try {
+      double area = 0.0;
+      for (const TopoDS_Face& block : mm::split_face(occ, face.frame, lines)) {
+        GProp_GProps block_props;
+        BRepGProp::SurfaceProperties(block, block_props, 1e-10);
+        area += block_props.Mass();
+      }
+      if (std::abs(area - props.Mass()) > 1e-6 * props.Mass()) return {kBroken, "block faces' area off"};
+    } catch (const mm::InputError& e) {
+      return {kBroken, std::string("OCC could not cut the face into its blocks: ") + e.what()};
     }
   } catch (const mm::SelfCheckError& e) {
     return {kSelfCheck, e.what()};
