@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "medial/medial_axis.hpp"
+#include "medial_checks.hpp"
 
 namespace mm::test {
 
@@ -42,12 +43,6 @@ bool cross_properly(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double tol) {
          ((d3 > tol * cd && d4 < -tol * cd) || (d3 < -tol * cd && d4 > tol * cd));
 }
 
-bool inside_face(const std::vector<std::vector<Vec2>>& loops, Vec2 p) {
-  bool in = point_in_polygon(loops[0], p);
-  for (std::size_t i = 1; i < loops.size(); ++i) in = in && !point_in_polygon(loops[i], p);
-  return in;
-}
-
 }  // namespace
 
 Decomposition decompose_face(const FaceModel& face, double merge_factor) {
@@ -63,8 +58,7 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
   std::vector<std::string> problems;
   const auto problem = [&](const std::string& what) { problems.push_back(face.name + ": " + what); };
   const double tol = 1e-7 * face.size + face.tolerance;
-  std::vector<std::vector<Vec2>> loops;
-  for (const Loop& loop : face.loops) loops.push_back(sample_loop(loop, 1e-5 * face.size));
+  const BoundaryProbe probe(face);  // exact distances to the boundary
 
   double total = 0.0;
   for (std::size_t b = 0; b < d.blocks.size(); ++b) {
@@ -127,16 +121,17 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
     const auto& line = d.splits[i].polyline;
     for (std::size_t k = 0; k + 1 < line.size(); ++k) {
       const Vec2 mid = 0.5 * (line[k] + line[k + 1]);
-      if (!inside_face(loops, mid) && distance_to_polyline(mid, loops[0], true) > tol)
+      if (!probe.inside(mid) && probe.distance_to_boundary(mid) > tol)
         problem("split " + std::to_string(i) + " leaves the face");
     }
     for (const Vec2 end : {line.front(), line.back()}) {
-      double nearest = 1e300;
-      for (const auto& loop : loops) nearest = std::min(nearest, distance_to_polyline(end, loop, true));
+      double nearest = probe.distance_to_boundary(end);
       for (std::size_t j = 0; j < d.splits.size(); ++j) {
         if (j != i) nearest = std::min(nearest, distance_to_polyline(end, d.splits[j].polyline, false));
       }
-      if (nearest > 1e-5 * face.size) problem("split " + std::to_string(i) + " ends in the open");
+      if (nearest > 1e-5 * face.size)
+        problem("split " + std::to_string(i) + " ends in the open, " + std::to_string(nearest / face.size) +
+                " of the size away");
     }
     for (std::size_t j = i + 1; j < d.splits.size(); ++j) {
       const auto& other = d.splits[j].polyline;

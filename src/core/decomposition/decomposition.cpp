@@ -112,6 +112,7 @@ struct Item {
   // range: forward along the loop from `a` to `b`, the whole loop if full
   BoundaryPlace a, b;
   bool full = false;
+  double advance = -1.0;  // how far along the loop, in loop positions; < 0: from a and b alone
   // split: boundary place a -> interior point -> boundary place b
   Vec2 middle;
   int bend = 2;             // elements at the interior point
@@ -1107,6 +1108,7 @@ class Decomposer {
       range.a = place_at(p, e, fwd, i, true);
       range.b = place_at(p, e, fwd, i, false);
       range.full = closed(e) && count == 0;
+      range.advance = advance(p, e, fwd, i, range);
       o.items.push_back(range);
       const bool at_cut = fwd ? i < count : i > 0;
       if (at_cut) {
@@ -1143,6 +1145,33 @@ class Decomposer {
       if (e == e0 && fwd == fwd0 && i == i0) return o;
     }
     throw SelfCheckFailure("decomposition: a block outline does not close");
+  }
+
+  // How far the walking side's touching point moves along its loop over an
+  // interval: the sum of the small steps between consecutive medial points,
+  // so that touches that wobble back a little on a curved boundary never
+  // turn a short range into the whole loop the other way round.
+  double advance(const Pieces& p, int e, bool fwd, int i, const Item& range) const {
+    if (range.full) return -1.0;
+    const auto& pts = axis_.edges[e].points;
+    const double lo = interval_start(p, e, i), hi = interval_end(p, e, i);
+    std::vector<const BoundaryPlace*> places{&range.a};
+    const int first = static_cast<int>(std::floor(lo)) + 1, last = static_cast<int>(std::ceil(hi)) - 1;
+    if (fwd) {
+      for (int k = first; k <= last; ++k) places.push_back(&pts[k].right);
+    } else {
+      for (int k = last; k >= first; --k) places.push_back(&pts[k].left);
+    }
+    places.push_back(&range.b);
+    const double n = static_cast<double>(face_.loops[range.a.loop].edges.size());
+    double total = 0.0;
+    for (std::size_t k = 0; k + 1 < places.size(); ++k) {
+      if (places[k]->loop != range.a.loop || places[k + 1]->loop != range.a.loop) return -1.0;
+      double step = loop_position(*places[k + 1]) - loop_position(*places[k]);
+      step -= n * std::round(step / n);  // the short way round
+      total += step;
+    }
+    return std::max(total, 0.0);
   }
 
   // The boundary place on the walking side at position s of interval i.
@@ -1452,7 +1481,14 @@ class Decomposer {
     const int n = static_cast<int>(loop.edges.size());
     const double pa = loop_position(it.a);
     double pb = loop_position(it.b);
-    if (it.full || pb <= pa) pb += n;
+    if (it.full) {
+      pb = pa + n;
+    } else if (it.advance >= 0.0) {
+      if (it.advance < 1e-12) return result;
+      pb = pa + it.advance;
+    } else if (pb <= pa) {
+      pb += n;
+    }
     std::vector<std::pair<double, bool>> breaks;  // loop position, virtual corner there
     for (int k = static_cast<int>(std::floor(pa)) + 1; k < pb; ++k) breaks.emplace_back(k, false);
     for (int v = 0; v < it.virtual_corners; ++v)
