@@ -88,24 +88,24 @@ PYBIND11_MODULE(_medialmesh, m) {
 
   m.def(
       "decompose",
-      [](const std::string& brep, const std::string& name, std::optional<double> merge_factor,
+      [](const std::string& brep, const std::string& name, std::optional<double> merge,
          std::optional<double> mesh_size) {
         const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
         const mm::MedialAxis axis = mm::compute_medial_axis(face);
         const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
         mm::DecompositionOptions options;
-        options.merge = merge_factor.has_value() || mesh_size.has_value();
-        options.tolerance = {merge_factor.value_or(0.75), mesh_size.value_or(0.0)};
+        options.merge = merge.has_value() || mesh_size.has_value();
+        options.tolerance = {merge.value_or(0.75), mesh_size.value_or(0.0)};
         nlohmann::json report = mm::decomposition_report_json(face, mm::decompose(face, axis, flow, options));
         report["frame"] = frame_json(face.frame);
         return to_python(report);
       },
-      py::arg("brep"), py::arg("name") = "face", py::arg("merge_factor") = py::none(),
-      py::arg("mesh_size") = py::none(),
+      py::arg("brep"), py::arg("name") = "face", py::arg("merge") = py::none(), py::arg("mesh_size") = py::none(),
       "Block decomposition of one planar face given as BREP text: {'blocks': [{'kind', 'sides', 'boundary', "
-      "'area', 'singularity', 'corners'}], 'splits': [{'polyline', 'reason'}], 'fixed', 'singularities', "
-      "'fallback', 'notes', 'frame'} in the face's 2-D frame; merge_factor (0.25 to 1) or mesh_size merge "
-      "close singularities first, neither: no merging.");
+      "'area', 'singularity', 'corners', 'side_pieces'}], 'splits': [{'polyline', 'reason'}], 'fixed', "
+      "'singularities', 'fallback', 'notes', 'face_area', 'frame'} in the face's 2-D frame; merge (a factor "
+      "in 0.25 to 1) or mesh_size merge close singularities first, neither: no merging. Raises InputError "
+      "for a face that cannot be read, SelfCheckError when the decomposition fails its own checks.");
 
   m.def(
       "read_faces",

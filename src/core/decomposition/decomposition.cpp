@@ -1136,6 +1136,10 @@ class Decomposer {
           Item gap;
           gap.a = range.b;
           gap.b = place_at(p, e, fwd, i, true);
+          // Only a finite contact's disc touches an arc between two edges;
+          // elsewhere the two touches are one point, at most a step apart
+          // (which must never be read as the rest of the loop).
+          if (axis_.vertices[v].kind != MedialVertexKind::FiniteContact) gap.advance = short_step(gap.a, gap.b);
           const auto fixed_here = boundary_fixed_.find(v);
           if (fixed_here != boundary_fixed_.end() && widest_gap(v) == static_cast<int>(k))
             gap.virtual_corners = fixed_here->second;
@@ -1163,15 +1167,25 @@ class Decomposer {
       for (int k = last; k >= first; --k) places.push_back(&pts[k].left);
     }
     places.push_back(&range.b);
-    const double n = static_cast<double>(face_.loops[range.a.loop].edges.size());
     double total = 0.0;
     for (std::size_t k = 0; k + 1 < places.size(); ++k) {
       if (places[k]->loop != range.a.loop || places[k + 1]->loop != range.a.loop) return -1.0;
-      double step = loop_position(*places[k + 1]) - loop_position(*places[k]);
-      step -= n * std::round(step / n);  // the short way round
-      total += step;
+      total += signed_step(*places[k], *places[k + 1]);
     }
     return std::max(total, 0.0);
+  }
+
+  // The step from a to b along their loop, the short way round (negative
+  // when b lies just behind a).
+  double signed_step(const BoundaryPlace& a, const BoundaryPlace& b) const {
+    const double n = static_cast<double>(face_.loops[a.loop].edges.size());
+    const double step = loop_position(b) - loop_position(a);
+    return step - n * std::round(step / n);
+  }
+
+  // The advance of a range that should be a point or a small step forward.
+  double short_step(const BoundaryPlace& a, const BoundaryPlace& b) const {
+    return a.loop == b.loop ? std::max(signed_step(a, b), 0.0) : 0.0;
   }
 
   // The boundary place on the walking side at position s of interval i.
