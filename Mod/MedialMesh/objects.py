@@ -20,6 +20,24 @@ TYPE = "MedialMesh::Analysis"
 DECOMPOSITION_TYPE = "MedialMesh::Decomposition"
 
 
+def add_face_properties(obj, type_name, group, source_doc):
+    """Give a MedialMesh object the properties every one of them has (Type,
+    Source, MergeFactor), missing ones only (documents from older versions);
+    return the function that adds further properties the same way."""
+
+    def add(kind, name, group, doc, mode=0):
+        if not hasattr(obj, name):
+            obj.addProperty(kind, name, group, doc, mode)
+
+    add("App::PropertyString", "Type", "Base", "Kind of MedialMesh object", 1)
+    obj.Type = type_name
+    # Global: the face may sit inside a PartDesign body, the object beside it.
+    add("App::PropertyLinkSubGlobal", "Source", group, source_doc)
+    add("App::PropertyFloat", "MergeFactor", group,
+        "Merge singularities closer than this factor (0.25 to 1) times their medial radius; 0: do not merge")
+    return add
+
+
 class MedialAnalysis:
     """Proxy of a Part::FeaturePython analysing one face."""
 
@@ -28,16 +46,7 @@ class MedialAnalysis:
         self.add_properties(obj)
 
     def add_properties(self, obj):
-        def add(kind, name, group, doc, mode=0):
-            if not hasattr(obj, name):
-                obj.addProperty(kind, name, group, doc, mode)
-
-        add("App::PropertyString", "Type", "Base", "Kind of MedialMesh object", 1)
-        obj.Type = TYPE
-        # Global: the face may sit inside a PartDesign body, the analysis beside it.
-        add("App::PropertyLinkSubGlobal", "Source", "Analysis", "The planar face analysed")
-        add("App::PropertyFloat", "MergeFactor", "Analysis",
-            "Merge singularities closer than this factor (0.25 to 1) times their medial radius; 0: do not merge")
+        add = add_face_properties(obj, TYPE, "Analysis", "The planar face analysed")
         read_only = 1  # the results: shown, not edited
         add("App::PropertyIntegerList", "FlowTypes", "Results", "Flow type n of each edge of Shape", read_only)
         add("App::PropertyVectorList", "SingularityPositions", "Results", "Where the singularities are", read_only)
@@ -96,15 +105,7 @@ class MedialDecomposition:
         self.add_properties(obj)
 
     def add_properties(self, obj):
-        def add(kind, name, group, doc, mode=0):
-            if not hasattr(obj, name):
-                obj.addProperty(kind, name, group, doc, mode)
-
-        add("App::PropertyString", "Type", "Base", "Kind of MedialMesh object", 1)
-        obj.Type = DECOMPOSITION_TYPE
-        add("App::PropertyLinkSubGlobal", "Source", "Decomposition", "The planar face decomposed")
-        add("App::PropertyFloat", "MergeFactor", "Decomposition",
-            "Merge singularities closer than this factor (0.25 to 1) times their medial radius; 0: do not merge")
+        add = add_face_properties(obj, DECOMPOSITION_TYPE, "Decomposition", "The planar face decomposed")
         # Hidden: a plain link would make this object depend on the sketch it
         # rewrites, so the sketch would stay touched after every recompute.
         add("App::PropertyLinkHidden", "Sketch", "Decomposition", "The splits as a sketch on the face's plane")
