@@ -1190,13 +1190,28 @@ class Decomposer {
 
   // The boundary place on the walking side at position s of interval i.
   BoundaryPlace place_at(const Pieces& p, int e, bool fwd, int i, bool entering) const {
-    const auto& pts = axis_.edges[e].points;
     const int count = static_cast<int>(p.cuts[e].size());
     // Interval i is bounded by cut i - 1 below and cut i above.
     const bool low_end = fwd == entering;
     const int cut = low_end ? (i > 0 ? p.cuts[e][i - 1] : -1) : (i < count ? p.cuts[e][i] : -1);
     if (cut >= 0) return side_place(cuts_[cut].point, fwd);
-    return side_place(low_end ? pts.front() : pts.back(), fwd);
+    return end_place(e, low_end, fwd);
+  }
+
+  // The touching place on one side (right: forwards) at an end of edge e,
+  // continuing the edge's own touches: the end point carries its vertex's,
+  // which at a junction touching several loops need not continue them (the
+  // mesh flow follows the neighbour's touches there too).
+  BoundaryPlace end_place(int e, bool at_start, bool right) const {
+    const auto& pts = axis_.edges[e].points;
+    const MedialPoint& end = at_start ? pts.front() : pts.back();
+    const BoundaryPlace& own = right ? end.right : end.left;
+    if (pts.size() < 3) return own;
+    const MedialPoint& next = at_start ? pts[1] : pts[pts.size() - 2];
+    const BoundaryPlace& neighbour = right ? next.right : next.left;
+    if (neighbour.loop == own.loop && distance(neighbour.point, own.point) <= 2.0 * distance(next.p, end.p) + tol_)
+      return own;
+    return nearest_on_run(index_, neighbour, end.p);
   }
 
   // The arm of a concave corner's cross a split meets the boundary along;
@@ -1239,14 +1254,13 @@ class Decomposer {
 
   // A fixed junction, entered along one of its edges: round that edge's sector.
   Item vertex_item(int v, int e, bool at_start) const {
-    const MedialPoint& end = at_start ? axis_.edges[e].points.front() : axis_.edges[e].points.back();
     const PointFlow& f = at_start ? flow_.points[e].front() : flow_.points[e].back();
     // Arriving at the start walks backwards (left side first), at the end forwards.
     const bool fwd = !at_start;
     Item it;
     it.split = true;
-    it.a = fwd ? end.right : end.left;
-    it.b = fwd ? end.left : end.right;
+    it.a = end_place(e, at_start, fwd);
+    it.b = end_place(e, at_start, !fwd);
     it.middle = axis_.vertices[v].p;
     it.bend = 2 - away_q(e, at_start);
     it.arm_a = fwd ? split_arm(it.a, f.right_corner, f.right_arm) : split_arm(it.a, f.left_corner, f.left_arm);
@@ -1430,13 +1444,13 @@ class Decomposer {
         continue;
       }
       // A fixed junction (with any junction at the same point): one radius
-      // to every place it touches.
+      // to every place its edges' ends touch.
       std::vector<Vec2> touched;
-      for (std::size_t w = 0; w < axis_.vertices.size(); ++w) {
-        if (rep_[w] != c.vertex) continue;
-        for (const BoundaryPlace& t : axis_.vertices[w].touches) {
-          if (std::none_of(touched.begin(), touched.end(), [&](Vec2 q) { return distance(q, t.point) <= tol_; }))
-            touched.push_back(t.point);
+      for (const End& end : ends_[c.vertex]) {
+        for (const bool right : {true, false}) {
+          const Vec2 t = end_place(end.edge, end.at_start, right).point;
+          if (std::none_of(touched.begin(), touched.end(), [&](Vec2 q) { return distance(q, t) <= tol_; }))
+            touched.push_back(t);
         }
       }
       for (const Vec2 t : touched) {
