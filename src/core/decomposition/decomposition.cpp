@@ -1209,8 +1209,9 @@ class Decomposer {
     if (pts.size() < 3) return own;
     const MedialPoint& next = at_start ? pts[1] : pts[pts.size() - 2];
     const BoundaryPlace& neighbour = right ? next.right : next.left;
-    if (neighbour.loop == own.loop && distance(neighbour.point, own.point) <= 2.0 * distance(next.p, end.p) + tol_)
-      return own;
+    // Only a touch on another loop is surely the junction's, not the edge's:
+    // near a curved end the edge's own touch may move fast and still continue.
+    if (neighbour.loop == own.loop) return own;
     return nearest_on_run(index_, neighbour, end.p);
   }
 
