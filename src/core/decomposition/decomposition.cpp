@@ -1681,6 +1681,7 @@ class Decomposer {
     for (const Outline& o : outlines) {
       if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
+      if (splits_cross(b)) throw SelfCheckFailure("decomposition: a block's outline crosses itself");
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
       if (sum != 4 + k_inside[o.component]) {
@@ -1709,6 +1710,33 @@ class Decomposer {
                              ", the face's is " + std::to_string(face_.area));
     }
     return d;
+  }
+
+  // Whether two split pieces of a block's outline cross (two splits ending
+  // at nearly one boundary point in the wrong order make a bow-tie whose
+  // area still adds up). A block has few split pieces, so all pairs.
+  static bool splits_cross(const Block& b) {
+    std::vector<std::pair<Vec2, Vec2>> segments;
+    for (const BlockSide& side : b.sides) {
+      for (const OutlinePiece& piece : side.pieces) {
+        if (piece.split < 0) continue;
+        for (std::size_t i = 0; i + 1 < piece.points.size(); ++i)
+          segments.emplace_back(piece.points[i], piece.points[i + 1]);
+      }
+    }
+    const auto side_of = [](Vec2 a, Vec2 b, Vec2 p) { return cross(b - a, p - a); };
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      for (std::size_t j = i + 1; j < segments.size(); ++j) {
+        const auto [a, b2] = segments[i];
+        const auto [c, d] = segments[j];
+        const double scale = 1e-12 * (norm(b2 - a) + norm(d - c)) * (norm(b2 - a) + norm(d - c));
+        const double d1 = side_of(a, b2, c), d2 = side_of(a, b2, d), d3 = side_of(c, d, a), d4 = side_of(c, d, b2);
+        if (((d1 > scale && d2 < -scale) || (d1 < -scale && d2 > scale)) &&
+            ((d3 > scale && d4 < -scale) || (d3 < -scale && d4 > scale)))
+          return true;
+      }
+    }
+    return false;
   }
 
   Block make_block(const Outline& o) const {
