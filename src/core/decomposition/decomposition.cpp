@@ -145,20 +145,29 @@ class Decomposer {
   // The paper's process; should a block fail its self-check, the whole face
   // again with every singularity that can be fixed fixed (the paper's
   // always-possible decomposition into submappable regions).
+  // Each attempt is tried with the edges' ends following the junction's
+  // touches where they stay on the edge's loop, then following the edge's
+  // own wherever the junction's jump (better on star-shaped faces, worse
+  // where touches move fast near curved ends); every result is checked.
   Decomposition run() {
-    try {
-      return attempt(false);
-    } catch (const SelfCheckFailure& first) {
-      try {
-        Decomposition d = attempt(true);
-        d.fallback = true;
-        d.notes.push_back(std::string("the process's blocks failed a self-check (") + first.what() +
-                          "); every singularity that can be fixed was fixed instead");
-        return d;
-      } catch (const SelfCheckFailure&) {
-        throw SelfCheckError(face_.name, first.what());
+    std::string first;
+    for (const bool fix_all : {false, true}) {
+      for (const bool strict : {false, true}) {
+        strict_end_touches_ = strict;
+        try {
+          Decomposition d = attempt(fix_all);
+          if (fix_all) {
+            d.fallback = true;
+            d.notes.push_back("the process's blocks failed a self-check (" + first +
+                              "); every singularity that can be fixed was fixed instead");
+          }
+          return d;
+        } catch (const SelfCheckFailure& failure) {
+          if (first.empty()) first = failure.what();
+        }
       }
     }
+    throw SelfCheckError(face_.name, first);
   }
 
   Decomposition attempt(bool fix_all) {
@@ -1209,10 +1218,13 @@ class Decomposer {
     if (pts.size() < 3) return own;
     const MedialPoint& next = at_start ? pts[1] : pts[pts.size() - 2];
     const BoundaryPlace& neighbour = right ? next.right : next.left;
-    // Only a touch on another loop is surely the junction's, not the edge's:
-    // near a curved end the edge's own touch may move fast and still continue.
-    if (neighbour.loop == own.loop) return own;
-    return nearest_on_run(index_, neighbour, end.p);
+    // A touch on another loop is surely the junction's, not the edge's; on
+    // the same loop, a jump of more than twice the medial step is taken as
+    // the junction's only in the strict attempt (near a curved end the
+    // edge's own touch may move that fast and still continue).
+    const bool jumps = neighbour.loop != own.loop || (strict_end_touches_ && distance(neighbour.point, own.point) >
+                                                                                 2.0 * distance(next.p, end.p) + tol_);
+    return jumps ? nearest_on_run(index_, neighbour, end.p) : own;
   }
 
   // The arm of a concave corner's cross a split meets the boundary along;
@@ -1772,8 +1784,9 @@ class Decomposer {
   BoundaryIndex index_;
   double tol_;
   std::map<std::pair<int, int>, int> corner_of_;
-  std::vector<int> rep_;          // per medial vertex, the one it stands with (coincident junctions)
-  std::vector<bool> contracted_;  // per medial edge: of no length, its ends one vertex
+  bool strict_end_touches_ = false;  // see end_place
+  std::vector<int> rep_;             // per medial vertex, the one it stands with (coincident junctions)
+  std::vector<bool> contracted_;     // per medial edge: of no length, its ends one vertex
   std::vector<Location> locations_;
   std::vector<Unit> units_;
   std::vector<int> unit_of_;
