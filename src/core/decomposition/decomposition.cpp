@@ -1315,6 +1315,7 @@ class Decomposer {
       units_in[*comps.begin()].push_back(static_cast<int>(u));
     }
     for (std::size_t i = 0; i < outlines.size(); ++i) outlines_of[outlines[i].component].push_back(static_cast<int>(i));
+    bool withdrew = false;
     for (const auto& [comp, list] : units_in) {
       bool ok = outlines_of[comp].size() == 1;
       if (ok) {
@@ -1332,11 +1333,10 @@ class Decomposer {
       // splits that make its reflex corners, so their own singularities get
       // fixed instead.
       if (!ok && list.size() == 1 && !fixable(list.front()) && outlines_of[comp].size() == 1) {
-        changed_by_withdrawal_ = withdraw_reflex_splits(outlines[outlines_of[comp].front()]) || changed_by_withdrawal_;
+        withdrew = withdraw_reflex_splits(outlines[outlines_of[comp].front()]) || withdrew;
       }
     }
-    bool changed = changed_by_withdrawal_;
-    changed_by_withdrawal_ = false;
+    bool changed = withdrew;
     for (int u : broken_units) {
       // A finite contact is moved onto its arc only once withdrawing splits has not helped.
       if (!fixable(u) && (changed || !boundary_fixable(u))) continue;
@@ -1474,31 +1474,13 @@ class Decomposer {
     }
   }
 
-  // The corner type at every junction of consecutive items (after merging
-  // ranges and dropping empty ones), in order; also used for checking.
-  std::vector<int> corner_types(const Outline& o) const {
-    std::vector<int> types;
-    for (const Node& n : nodes(o)) types.push_back(n.type);
-    return types;
-  }
+  // The corner type at the start of every piece of the outline (2: none).
+  std::vector<int> corner_types(const Outline& o) const { return flatten(o).start_type; }
 
-  struct Node {  // a point of the outline where a corner may be
-    Vec2 p;
-    int type = 2;
-  };
   struct Flat {  // the outline as pieces with the corner type at each piece's start
     std::vector<OutlinePiece> pieces;
     std::vector<int> start_type;
   };
-
-  std::vector<Node> nodes(const Outline& o) const {
-    const Flat flat = flatten(o);
-    std::vector<Node> result;
-    for (std::size_t i = 0; i < flat.pieces.size(); ++i) {
-      if (flat.start_type[i] != 2) result.push_back({flat.pieces[i].points.front(), flat.start_type[i]});
-    }
-    return result;
-  }
 
   // Position along a loop: edge index plus the fraction of its parameter range.
   double loop_position(const BoundaryPlace& place) const {
@@ -1804,7 +1786,6 @@ class Decomposer {
   std::map<int, int> boundary_fixed_;                // finite-contact vertex -> convex corners put on its arc
   std::vector<int> split_owner_;                     // the cut each split belongs to
   std::set<std::pair<int, long>> withdrawn_;         // (edge, position x 1e6) of withdrawn cuts, never placed again
-  bool changed_by_withdrawal_ = false;
   std::vector<Split> splits_;
   std::vector<std::string> notes_;
 };
