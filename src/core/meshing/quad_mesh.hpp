@@ -1,0 +1,33 @@
+#pragma once
+// The quad mesh every meshing stage hands on: plain arrays of nodes and
+// elements in the face's own 2-D coordinates, with what each boundary node
+// knows about the exact curve it lies on.
+#include <array>
+#include <vector>
+
+#include "geometry/vec2.hpp"
+
+namespace mm {
+
+// Where a node lies: on a boundary edge (loop >= 0) at curve parameter t, or
+// inside the face (loop < 0). corner_elements is the number of elements the
+// theory wants at the node (the corner's nc, 2 on a smooth boundary point),
+// 0 for interior nodes.
+struct NodePlace {
+  int loop = -1;
+  int edge = -1;
+  double t = 0.0;
+  bool face_corner = false;  // a vertex of the face: never moves
+  int corner_elements = 0;
+};
+
+struct QuadMesh {
+  std::vector<Vec2> nodes;
+  std::vector<NodePlace> places;           // one per node
+  std::vector<std::array<int, 4>> quads;   // corner nodes, counter-clockwise
+  std::vector<std::array<int, 4>> midside; // order 2 only: node on side i (corner i to i + 1)
+  std::vector<int> block_of_quad;          // the decomposition block each quad came from
+  int order() const { return midside.empty() ? 1 : 2; }
+};
+
+}  // namespace mm

@@ -1,0 +1,27 @@
+#pragma once
+// Smoothing after the templates: moves interior nodes, and boundary nodes
+// along their exact curves by parameter, so that the worst element gets
+// better; untangles first when the placement folded an element.
+#include "boundary/face_model.hpp"
+#include "meshing/quad_mesh.hpp"
+
+namespace mm {
+
+struct SmoothingOptions {
+  int max_sweeps = 30;
+  bool move_boundary = true;  // slide boundary nodes along their edges
+};
+
+struct SmoothingResult {
+  double min_scaled_jacobian_before = 0.0;
+  double min_scaled_jacobian_after = 0.0;
+  int inverted_before = 0;
+  int inverted_after = 0;
+  int sweeps = 0;
+};
+
+// Never lowers the minimum scaled Jacobian of a mesh with no inverted
+// element; face corners never move.
+SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options);
+
+}  // namespace mm

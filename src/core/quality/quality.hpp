@@ -1,0 +1,40 @@
+#pragma once
+// The quality report of a quad mesh: what an engineer checks before solving.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meshing/quad_mesh.hpp"
+
+namespace mm {
+
+struct IrregularNode {
+  int node = -1;
+  Vec2 p;
+  int elements = 0;  // elements at the node (its valence inside the face)
+  int expected = 4;  // 4 inside, the corner's nc on the boundary
+};
+
+struct QualityReport {
+  int nodes = 0;
+  int quads = 0;
+  int triangles = 0;  // always 0: the mesh is all quads
+  int inverted = 0;   // elements with a non-positive scaled Jacobian at some corner
+  double min_scaled_jacobian = 0.0;
+  double mean_scaled_jacobian = 0.0;  // mean over elements of their minimum corner value
+  double min_angle = 0.0;             // degrees
+  double max_angle = 0.0;
+  int worst_element = -1;  // the element with the least scaled Jacobian
+  double area = 0.0;       // sum of element areas (signed, as meshed)
+  std::vector<IrregularNode> irregular_interior;  // valence other than 4
+  std::vector<IrregularNode> irregular_boundary;  // elements other than corner_elements
+  std::vector<std::pair<std::string, double>> stage_seconds;
+  double seconds = 0.0;
+};
+
+// Scaled Jacobian of a quad at its worst corner, in [-1, 1].
+double scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+QualityReport measure_quality(const QuadMesh& mesh);
+
+}  // namespace mm
