@@ -5,6 +5,7 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <cmath>
 #include <csignal>
 #include <iostream>
 #include <optional>
@@ -15,7 +16,10 @@
 #include "occ/occ_split_io.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
+#include "pipeline/pipeline.hpp"
 #include "report/medial_report.hpp"
+#include "report/mesh_files.hpp"
+#include "report/mesh_report.hpp"
 #include "report/singularity_report.hpp"
 #include "svg/svg_writer.hpp"
 
@@ -28,11 +32,15 @@ constexpr const char* kUsage =
     "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
     "       medialmesh decompose FILE [--face N] [--merge F | --merge-size H | --no-merge] [--json] [--svg OUT.svg]\n"
     "                            [--blocks OUT.brep|OUT.step]\n"
+    "       medialmesh mesh FILE [--face N] [--size H] [--order 1|2] [--merge F | --merge-size H | --no-merge]\n"
+    "                       [-o OUT.inp|OUT.msh|OUT.vtu] [--shell] [--no-smooth] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
     "--face takes a number or a comma-separated list (info only).\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
     "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n"
-    "decompose merges with F = 0.75 unless told otherwise.\n"
+    "decompose and mesh merge with F = 0.75 unless told otherwise.\n"
+    "mesh: H is the target element size (a twentieth of the face's diagonal if left out); .inp files\n"
+    "hold CPS4/CPS8 plane-stress elements, S4/S8 shells with --shell.\n"
     "--read-time-limit S gives up reading FILE after S seconds (60 if left out).\n";
 
 struct Options {
@@ -43,6 +51,10 @@ struct Options {
   std::string output;
   std::string svg;
   std::string blocks;
+  std::optional<double> size;
+  int order = 1;
+  bool shell = false;
+  bool smooth = true;
   std::optional<mm::MergeTolerance> merge;
   bool no_merge = false;
   unsigned read_time_limit = 60;
@@ -90,7 +102,7 @@ Options parse(int argc, char** argv) {
   if (args.empty()) throw UsageError{"no command given"};
   o.command = args[0];
   if (o.command != "info" && o.command != "svg" && o.command != "medial" && o.command != "singularities" &&
-      o.command != "decompose")
+      o.command != "decompose" && o.command != "mesh")
     throw UsageError{"unknown command '" + o.command + "'"};
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -115,6 +127,20 @@ Options parse(int argc, char** argv) {
       const std::optional<double> number = parse_number(text);
       if (!number) throw UsageError{a + " needs a number, got '" + text + "'"};
       o.merge = a == "--merge" ? mm::MergeTolerance{*number, 0.0} : mm::MergeTolerance{0.75, *number};
+    } else if (a == "--size" || a == "--order") {
+      const std::string& text = value();
+      const std::optional<double> number = parse_number(text);
+      if (!number) throw UsageError{a + " needs a number, got '" + text + "'"};
+      if (a == "--size") {
+        o.size = *number;
+      } else {
+        o.order = *number == 1.0 ? 1 : *number == 2.0 ? 2 : 0;
+        if (o.order == 0) throw UsageError{"--order is 1 or 2, got '" + text + "'"};
+      }
+    } else if (a == "--shell") {
+      o.shell = true;
+    } else if (a == "--no-smooth") {
+      o.smooth = false;
     } else if (a == "--no-merge") {
       o.no_merge = true;
     } else if (a == "--read-time-limit") {
@@ -135,8 +161,11 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.faces.size() > 1) throw UsageError{o.command + " takes a single --face"};
   if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
-  if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose")
-    throw UsageError{"--merge belongs to the singularities and decompose commands"};
+  if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose" && o.command != "mesh")
+    throw UsageError{"--merge belongs to the singularities, decompose and mesh commands"};
+  if (o.no_merge && o.command == "singularities") throw UsageError{"--no-merge belongs to decompose and mesh"};
+  if (o.command != "mesh" && (o.size || o.order != 1 || o.shell || !o.smooth))
+    throw UsageError{"--size, --order, --shell and --no-smooth belong to the mesh command"};
   if (o.merge && o.no_merge) throw UsageError{"--merge and --no-merge exclude each other"};
   if (o.command == "decompose" && !o.json && o.svg.empty() && o.blocks.empty())
     throw UsageError{"decompose needs --json, --svg OUT.svg or --blocks OUT.brep"};
@@ -195,6 +224,50 @@ void run_decompose(const Options& o, const mm::FaceModel& face) {
   }
 }
 
+// Meshes the face; writes the mesh file, the report and the picture asked for.
+void run_mesh(const Options& o, const mm::FaceModel& face) {
+  if (!o.output.empty()) {
+    const std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
+    if (ext != ".inp" && ext != ".msh" && ext != ".vtu")
+      throw mm::InputError(o.output + ": unknown mesh format (use .inp, .msh or .vtu)");
+  }
+  if (o.size && !(*o.size > 0.0 && std::isfinite(*o.size)))
+    throw mm::InputError("--size must be a positive number, got " + std::to_string(*o.size));
+  mm::PipelineOptions options;
+  options.meshing.size = o.size ? *o.size : 0.05 * face.size;
+  options.meshing.order = o.order;
+  options.meshing.smooth = o.smooth;
+  options.merge = !o.no_merge;
+  if (o.merge) options.tolerance = *o.merge;
+  const mm::MeshedFace meshed = mm::mesh_face(face, options);
+  const mm::QuadMesh& mesh = meshed.blocks.mesh;
+  if (!o.output.empty()) {
+    mm::MeshFileOptions file;
+    file.shell_elements = o.shell;
+    mm::write_mesh_file(mesh, face.frame, o.output, file);
+  }
+  if (o.json) {
+    nlohmann::json report = mm::mesh_report_json(meshed.quality, mesh.order());
+    report["face"] = face.name;
+    report["size"] = options.meshing.size;
+    report["blocks"] = meshed.decomposition.blocks.size();
+    report["singularities"] = meshed.decomposition.singularities.size();
+    report["notes"] = meshed.blocks.notes;
+    std::cout << report.dump(2) << "\n";
+  } else {
+    const mm::QualityReport& q = meshed.quality;
+    std::cout << face.name << ": " << q.quads << " quads (order " << mesh.order() << "), " << q.nodes
+              << " nodes, min scaled Jacobian " << q.min_scaled_jacobian << ", mean " << q.mean_scaled_jacobian
+              << ", angles " << q.min_angle << " to " << q.max_angle << " degrees, " << q.irregular_interior.size()
+              << " irregular interior nodes, " << q.seconds << " s\n";
+  }
+  if (!o.svg.empty()) {
+    mm::SvgCanvas canvas(mm::bounding_box(face), 800);
+    mm::draw_quad_mesh(canvas, face, meshed.decomposition, mesh, meshed.quality);
+    canvas.save(o.svg);
+  }
+}
+
 // OCC's readers crash (null handles in a truncated BREP, a corrupted STEP)
 // or loop for ever on some malformed files, and a NaN in a file can crash its
 // projections. So a child process reads the file first, under a time limit;
@@ -243,6 +316,8 @@ int run(const Options& o) {
     run_singularities(o, faces.front());
   } else if (o.command == "decompose") {
     run_decompose(o, faces.front());
+  } else if (o.command == "mesh") {
+    run_mesh(o, faces.front());
   } else {
     const mm::MedialAxis axis = mm::compute_medial_axis(faces.front());
     if (o.json) std::cout << mm::medial_report_json(axis).dump(2) << "\n";

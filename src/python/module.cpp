@@ -1,4 +1,5 @@
 // _medialmesh: the core and the OCC reader seen from Python (and FreeCAD).
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -7,7 +8,9 @@
 #include "occ/occ_reader.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
+#include "pipeline/pipeline.hpp"
 #include "report/medial_report.hpp"
+#include "report/mesh_report.hpp"
 #include "report/singularity_report.hpp"
 
 namespace py = pybind11;
@@ -34,6 +37,47 @@ py::object face_dict(const mm::FaceModel& face) {
   }
   report["loops"] = loops;
   return to_python(report);
+}
+
+// The mesh as numpy arrays: nodes in 3-D (the face's frame) and in the face's
+// plane, elements as 0-based node indices (4 corners, then 4 mid-side nodes).
+py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
+  const mm::QuadMesh& mesh = meshed.blocks.mesh;
+  const auto node_count = static_cast<py::ssize_t>(mesh.nodes.size());
+  py::array_t<double> nodes({node_count, py::ssize_t{3}});
+  py::array_t<double> plane({node_count, py::ssize_t{2}});
+  auto n3 = nodes.mutable_unchecked<2>();
+  auto n2 = plane.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < node_count; ++i) {
+    const std::array<double, 3> p = mm::to_3d(face.frame, mesh.nodes[i]);
+    for (int c = 0; c < 3; ++c) n3(i, c) = p[c];
+    n2(i, 0) = mesh.nodes[i].x;
+    n2(i, 1) = mesh.nodes[i].y;
+  }
+  const int per_element = mesh.order() == 2 ? 8 : 4;
+  const auto element_count = static_cast<py::ssize_t>(mesh.quads.size());
+  py::array_t<int> elements({element_count, static_cast<py::ssize_t>(per_element)});
+  py::array_t<int> blocks(element_count);
+  auto e = elements.mutable_unchecked<2>();
+  auto b = blocks.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < element_count; ++i) {
+    for (int c = 0; c < 4; ++c) e(i, c) = mesh.quads[i][c];
+    if (per_element == 8)
+      for (int c = 0; c < 4; ++c) e(i, 4 + c) = mesh.midside[i][c];
+    b(i) = mesh.block_of_quad.empty() ? 0 : mesh.block_of_quad[i];
+  }
+  py::dict result;
+  result["nodes"] = nodes;
+  result["nodes_2d"] = plane;
+  result["elements"] = elements;
+  result["element_blocks"] = blocks;
+  nlohmann::json report = mm::mesh_report_json(meshed.quality, mesh.order());
+  report["notes"] = meshed.blocks.notes;
+  result["report"] = to_python(report);
+  nlohmann::json decomposition = mm::decomposition_report_json(face, meshed.decomposition);
+  decomposition["frame"] = frame_json(face.frame);
+  result["decomposition"] = to_python(decomposition);
+  return result;
 }
 
 }  // namespace
@@ -106,6 +150,33 @@ PYBIND11_MODULE(_medialmesh, m) {
       "'singularities', 'fallback', 'notes', 'face_area', 'frame'} in the face's 2-D frame; merge (a factor "
       "in 0.25 to 1) or mesh_size merge close singularities first, neither: no merging. Raises InputError "
       "for a face that cannot be read, SelfCheckError when the decomposition fails its own checks.");
+
+  m.def(
+      "mesh",
+      [](const std::string& brep, double size, int order, std::optional<double> merge,
+         std::optional<double> merge_size, bool smooth, const std::string& name) {
+        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
+        mm::PipelineOptions options;
+        options.meshing.size = size;
+        options.meshing.order = order;
+        options.meshing.smooth = smooth;
+        options.merge = merge.has_value() || merge_size.has_value();
+        options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+        mm::MeshedFace meshed;
+        {
+          py::gil_scoped_release release;  // the FreeCAD GUI keeps drawing while we mesh
+          meshed = mm::mesh_face(face, options);
+        }
+        return mesh_dict(face, meshed);
+      },
+      py::arg("brep"), py::arg("size"), py::arg("order") = 1, py::arg("merge") = 0.75,
+      py::arg("merge_size") = py::none(), py::arg("smooth") = true, py::arg("name") = "face",
+      "All-quad mesh of one planar face given as BREP text, with target element size `size` and element "
+      "order 1 (4-node) or 2 (8-node): {'nodes': (N, 3) array in 3-D, 'nodes_2d': (N, 2) in the face's "
+      "frame, 'elements': (M, 4 or 8) 0-based node indices (corners counter-clockwise, then mid-side "
+      "nodes), 'element_blocks': (M,), 'report': quality report, 'decomposition': the blocks}. merge is "
+      "the merge factor (None: no merging), merge_size a merge distance. Raises InputError for bad input, "
+      "SelfCheckError when a stage fails its own checks.");
 
   m.def(
       "read_faces",

@@ -7,6 +7,8 @@
 #include "boundary/face_model.hpp"
 #include "decomposition/decomposition.hpp"
 #include "medial/medial_axis.hpp"
+#include "meshing/quad_mesh.hpp"
+#include "quality/quality.hpp"
 #include "singularity/mesh_flow.hpp"
 
 namespace mm {
@@ -57,5 +59,11 @@ void draw_mesh_flow(SvgCanvas& canvas, const FaceModel& face, const MeshFlow& fl
 // ringed), with a legend: the picture of the paper's Figs. 21 to 26.
 void draw_decomposition(SvgCanvas& canvas, const FaceModel& face, const MedialAxis& axis,
                         const Decomposition& decomposition);
+
+// The quad mesh over its blocks' shading, the splits drawn bold, and the
+// irregular nodes marked by valence (boundary nodes off their corner's nc in
+// orange), with a legend.
+void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition,
+                    const QuadMesh& mesh, const QualityReport& quality);
 
 }  // namespace mm
