@@ -1,0 +1,97 @@
+#include "mesh_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "medial_checks.hpp"
+
+namespace mm::test {
+
+namespace {
+std::string where(Vec2 p) {
+  std::ostringstream s;
+  s << "(" << p.x << ", " << p.y << ")";
+  return s.str();
+}
+}  // namespace
+
+std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& mesh, double size) {
+  std::vector<std::string> problems;
+  const auto problem = [&](const std::string& text) {
+    if (problems.size() < 20) problems.push_back(text);
+  };
+  if (mesh.quads.empty()) problem("no elements");
+  if (mesh.places.size() != mesh.nodes.size()) problem("nodes and places differ in number");
+  std::map<std::pair<int, int>, int> sides;
+  double area = 0.0;
+  for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
+    const auto& q = mesh.quads[e];
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 p = mesh.nodes[q[i]];
+      const double turn = cross(mesh.nodes[q[(i + 1) % 4]] - p, mesh.nodes[q[(i + 3) % 4]] - p);
+      if (!(turn > 0.0)) problem("element " + std::to_string(e) + " is inverted at " + where(p));
+      area += 0.5 * cross(p, mesh.nodes[q[(i + 1) % 4]]);
+      ++sides[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
+    }
+  }
+  const BoundaryProbe probe(face);
+  const double on_curve = 1e-7 * face.size;
+  std::vector<bool> on_boundary(mesh.nodes.size(), false);
+  double boundary_length = 0.0;
+  for (const auto& [side, count] : sides) {
+    const Vec2 a = mesh.nodes[side.first], b = mesh.nodes[side.second];
+    if (count > 2) problem("a side at " + where(0.5 * (a + b)) + " is in " + std::to_string(count) + " elements");
+    if (count == 1) {
+      on_boundary[side.first] = on_boundary[side.second] = true;
+      boundary_length += distance(a, b);
+    }
+  }
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    if (!on_boundary[n]) continue;
+    const double off = probe.distance_to_boundary(mesh.nodes[n]);
+    if (off > on_curve) problem("boundary node " + std::to_string(n) + " is " + std::to_string(off) + " off the boundary");
+    if (mesh.places[n].loop < 0) problem("boundary node " + std::to_string(n) + " is not marked as on a curve");
+  }
+  // The boundary sides' chords cut off at most (chord x sagitta) each; the
+  // sagitta of a chord of length c on a curve of radius R is about c^2 / 8R.
+  // Bound it from the chord's midpoint distance to the boundary instead.
+  double chordal = 0.0;
+  for (const auto& [side, count] : sides) {
+    if (count != 1) continue;
+    const Vec2 a = mesh.nodes[side.first], b = mesh.nodes[side.second];
+    chordal += distance(a, b) * probe.distance_to_boundary(0.5 * (a + b)) * 1.5;
+  }
+  if (std::abs(area - face.area) > chordal + 1e-9 * face.area) {
+    problem("the elements cover " + std::to_string(area) + ", the face " + std::to_string(face.area));
+  }
+  // Every boundary loop is covered: the mesh's boundary is as long as the face's, to the chordal error.
+  double face_length = 0.0;
+  for (const Loop& loop : face.loops) {
+    for (const BoundaryEdge& e : loop.edges) face_length += edge_length(e);
+  }
+  if (boundary_length > face_length * (1.0 + 1e-9) || boundary_length < 0.9 * face_length) {
+    problem("the mesh's boundary is " + std::to_string(boundary_length) + " long, the face's " +
+            std::to_string(face_length));
+  }
+  const double expected = face.area / (size * size);
+  const double quads = static_cast<double>(mesh.quads.size());
+  if (expected > 20 && (quads < 0.4 * expected || quads > 2.5 * expected)) {
+    problem(std::to_string(mesh.quads.size()) + " elements for area / H^2 = " + std::to_string(expected));
+  }
+  return problems;
+}
+
+int interior_irregularity(const QuadMesh& mesh) {
+  std::vector<int> valence(mesh.nodes.size(), 0);
+  for (const auto& q : mesh.quads)
+    for (int n : q) ++valence[n];
+  int sum = 0;
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    if (mesh.places[n].loop < 0 && valence[n] > 0) sum += std::abs(4 - valence[n]);
+  }
+  return sum;
+}
+
+}  // namespace mm::test

@@ -1,0 +1,124 @@
+// Quad meshes of the reference faces (known answers and quality bounds), of
+// every shared and real CAD face (all checks), and the mesh command.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "mesh_checks.hpp"
+#include "occ/occ_reader.hpp"
+#include "pipeline/pipeline.hpp"
+#include "test_support.hpp"
+
+namespace mm {
+namespace {
+
+MeshedFace meshed(const FaceModel& face, double size_fraction = 0.05, int order = 1) {
+  PipelineOptions options;
+  options.meshing.size = size_fraction * face.size;
+  options.meshing.order = order;
+  return mesh_face(face, options);
+}
+
+std::vector<int> irregular_valences(const QualityReport& q) {
+  std::vector<int> valences;
+  for (const IrregularNode& n : q.irregular_interior) valences.push_back(n.elements);
+  std::sort(valences.begin(), valences.end());
+  return valences;
+}
+
+TEST(MeshReference, FacesWithoutSingularitiesHaveNoIrregularInteriorNode) {
+  for (const char* name : {"square", "rectangle", "L_shape", "T_shape", "indents", "annulus"}) {
+    const FaceModel face = test::reference_face(name);
+    const MeshedFace m = meshed(face);
+    EXPECT_TRUE(m.quality.irregular_interior.empty()) << name << ": " << m.quality.irregular_interior.size();
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size).empty()) << name;
+  }
+}
+
+TEST(MeshReference, CircleHasExactlyFourValenceThreeNodes) {
+  const MeshedFace m = meshed(test::reference_face("circle"));
+  EXPECT_EQ(irregular_valences(m.quality), (std::vector<int>{3, 3, 3, 3}));
+}
+
+TEST(MeshReference, RegularPolygonsHaveOneIrregularNodeOfTheirSides) {
+  EXPECT_EQ(irregular_valences(meshed(test::reference_face("triangle")).quality), (std::vector<int>{3}));
+  EXPECT_EQ(irregular_valences(meshed(test::reference_face("pentagon")).quality), (std::vector<int>{5}));
+  EXPECT_EQ(irregular_valences(meshed(test::reference_face("hexagon")).quality), (std::vector<int>{6}));
+}
+
+std::vector<std::string> all_shared_faces() {
+  auto files = test::brep_files(test::shared_dir() + "/geometry");
+  for (const auto& f : test::brep_files(test::shared_dir() + "/realcad/faces")) files.push_back(f);
+  return files;
+}
+
+// Every shared face meshes at a twentieth of its diagonal into a valid mesh
+// whose irregular nodes come only from the singularities; the reference
+// faces (no corner sharper than 60 degrees) keep a scaled Jacobian of 0.4.
+TEST(MeshReference, EverySharedFaceMeshesValidly) {
+  for (const std::string& path : all_shared_faces()) {
+    const FaceModel face = read_face_models(path, {}).front();
+    MeshedFace m;
+    ASSERT_NO_THROW(m = meshed(face)) << path;
+    const auto problems = test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size);
+    EXPECT_TRUE(problems.empty()) << path << ": " << ::testing::PrintToString(problems);
+    EXPECT_EQ(m.quality.triangles, 0);
+    EXPECT_EQ(m.quality.inverted, 0) << path;
+    int singular = 0;
+    for (const DecomposedSingularity& s : m.decomposition.singularities) singular += std::abs(s.k);
+    EXPECT_LE(test::interior_irregularity(m.blocks.mesh), singular) << path;
+    if (path.find("/geometry/") != std::string::npos)
+      EXPECT_GE(m.quality.min_scaled_jacobian, 0.4) << path;
+  }
+}
+
+TEST(MeshReference, QuadraticElementsPutMidSideNodesOnTheCurves) {
+  const FaceModel face = test::reference_face("plate_with_hole");
+  const MeshedFace m = meshed(face, 0.05, 2);
+  const QuadMesh& mesh = m.blocks.mesh;
+  ASSERT_EQ(mesh.order(), 2);
+  ASSERT_EQ(mesh.midside.size(), mesh.quads.size());
+  int on_curves = 0;
+  for (const auto& sides : mesh.midside) {
+    for (int n : sides) {
+      const NodePlace& place = mesh.places[n];
+      if (place.loop < 0) continue;
+      const Vec2 exact = edge_point(face.loops[place.loop].edges[place.edge], place.t).p;
+      EXPECT_LT(distance(exact, mesh.nodes[n]), 1e-12 * face.size);
+      ++on_curves;
+    }
+  }
+  EXPECT_GT(on_curves, 0);
+}
+
+TEST(MeshCommand, WritesFilesReportAndPicture) {
+  const std::string out = test::scratch_dir() + "/plate";
+  const auto r = test::run_cli("mesh " + test::shared_dir() + "/geometry/plate_with_hole.brep --size 2 -o " + out +
+                               ".inp --json --svg " + out + ".svg");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(r.out);
+  for (const char* key : {"quads", "triangles", "inverted", "min_scaled_jacobian", "mean_scaled_jacobian",
+                          "min_angle", "max_angle", "irregular_interior", "irregular_boundary", "seconds", "stages"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_GT(report["quads"].get<int>(), 50);
+  EXPECT_EQ(report["inverted"].get<int>(), 0);
+  std::ifstream inp(out + ".inp");
+  EXPECT_TRUE(inp.good());
+  std::ifstream svg(out + ".svg");
+  EXPECT_TRUE(svg.good());
+}
+
+TEST(MeshCommand, BadArgumentsExitTwoWithOneLine) {
+  const std::string face = test::shared_dir() + "/geometry/square.brep";
+  for (const std::string& args :
+       {"mesh " + face + " --size -1", "mesh " + face + " --size 0", "mesh " + face + " --size nan",
+        "mesh " + face + " -o out.xyz", "mesh " + face + " --size 1 -o /nonexistent/dir/out.inp"}) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace mm
