@@ -280,6 +280,20 @@ TEST(Smoothing, FoldedQuadIsUntangled) {
   EXPECT_GT(result.min_scaled_jacobian_after, 0.5);
 }
 
+TEST(Smoothing, ReflexBlockCornerFoldIsUntangled) {
+  // The valence-3 centre of a triangle placed past the midline makes one
+  // block non-convex, so its transfinite grid folds near the centre.
+  std::vector<Vec2> corners;
+  for (int s = 0; s < 3; ++s) corners.push_back({std::cos(2 * kPi * s / 3), std::sin(2 * kPi * s / 3)});
+  const FaceModel triangle = face({polygon(corners)}, "triangle");
+  QuadMesh mesh = fan_mesh(triangle, corners, 0.3 * corners[0], 10);
+  ASSERT_GT(inverted(mesh), 0);
+  const SmoothingResult result = smooth_mesh(triangle, mesh, {});
+  EXPECT_GT(result.inverted_before, 0);
+  EXPECT_EQ(result.inverted_after, 0);
+  EXPECT_EQ(inverted(mesh), 0);
+}
+
 TEST(Smoothing, IrregularNodesImproveTheirWorstElement) {
   for (const int sides : {3, 5}) {
     std::vector<Vec2> corners;

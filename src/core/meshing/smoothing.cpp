@@ -11,11 +11,17 @@ namespace {
 
 // A node whose move is below this fraction of its mean edge length does not
 // wake its neighbours: the sweeps stop once nothing moves noticeably.
-constexpr double kStillFraction = 1e-2;
+constexpr double kStillFraction = 2e-2;
 // Boundary nodes keep this fraction of their parameter interval away from
 // its ends, so they never reach a neighbour.
 constexpr double kIntervalMargin = 1e-2;
-constexpr int kUntanglePasses = 100;
+constexpr int kUntanglePasses = 200;
+constexpr int kUntangleStall = 3;  // passes without fewer inverted quads before reaching further
+constexpr int kUntangleRings = 8;
+constexpr int kRelaxSweeps = 50;
+// Quads at least this good are left alone: moving their nodes costs time
+// and cannot help the worst element.
+constexpr double kGoodEnough = 0.9;
 constexpr int kWorstPasses = 5;
 // Quads within this much of the minimum scaled Jacobian count as the worst.
 constexpr double kWorstBand = 0.1;
@@ -282,11 +288,12 @@ class Smoother {
 
   // One Laplacian step of one node; true if it moved noticeably.
   bool smooth_node(int n) {
+    const LocalQuality current = cached_quality(n);
+    if (current.min >= kGoodEnough) return false;
     const Vec2 x = mesh_.nodes[n];
     const double still2 = kStillFraction * kStillFraction * mean_squared_side(n);
     Vec2 parallelogram, centroid;
     targets(n, parallelogram, centroid);
-    const LocalQuality current = cached_quality(n);
     if (mesh_.places[n].loop < 0) {
       for (Vec2 target : {parallelogram, centroid}) {
         const Vec2 step = target - x;
@@ -396,26 +403,73 @@ class Smoother {
     return true;
   }
 
+  // The nodes of the given quads and `rings` rings of quads around them, in index order.
+  void region(const std::vector<int>& quads, int rings, std::vector<int>& nodes) {
+    picked_.resize(mesh_.nodes.size(), 0);
+    nodes.clear();
+    for (int q : quads)
+      for (int n : mesh_.quads[q])
+        if (!picked_[n]) picked_[n] = 1, nodes.push_back(n);
+    for (int ring = 0, from = 0; ring < rings; ++ring) {
+      const int to = static_cast<int>(nodes.size());
+      for (int k = from; k < to; ++k)
+        for (int c = offsets_[nodes[k]]; c < offsets_[nodes[k] + 1]; ++c)
+          for (int n : mesh_.quads[corners_[c] / 4])
+            if (!picked_[n]) picked_[n] = 1, nodes.push_back(n);
+      from = to;
+    }
+    for (int n : nodes) picked_[n] = 0;
+    std::sort(nodes.begin(), nodes.end());
+  }
+
+  // Plain Laplacian relaxation of the region's interior nodes, with no
+  // quality check: it unfolds what node-by-node search cannot reach. Kept
+  // only if fewer quads around the region end up inverted.
+  void relax_region(const std::vector<int>& nodes) {
+    std::vector<int> quads;
+    for (int n : nodes)
+      for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) quads.push_back(corners_[k] / 4);
+    std::sort(quads.begin(), quads.end());
+    quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
+    const auto count = [&] {
+      return std::count_if(quads.begin(), quads.end(), [&](int q) { return quad_sj_[q] <= 0.0; });
+    };
+    const auto before = count();
+    std::vector<Vec2> saved;
+    for (int n : nodes) saved.push_back(mesh_.nodes[n]);
+    for (int sweep = 0; sweep < kRelaxSweeps; ++sweep)
+      for (int n : nodes)
+        if (movable_[n] && mesh_.places[n].loop < 0) {
+          Vec2 parallelogram, centroid;
+          targets(n, parallelogram, centroid);
+          mesh_.nodes[n] = centroid;
+        }
+    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+    if (count() < before) return;
+    for (std::size_t k = 0; k < nodes.size(); ++k) mesh_.nodes[nodes[k]] = saved[k];
+    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+  }
+
   // Lifts the least signed corner area around the nodes of inverted quads
-  // until none is inverted or a pass changes nothing. Returns the passes.
+  // until none is inverted or nothing moves. A fold larger than one node's
+  // reach needs room from further away: while the count of inverted quads
+  // stalls, the worked nodes grow by rings, and at the widest a plain
+  // Laplacian relaxation of the region is tried once. Returns the passes.
   int untangle() {
     std::vector<int> inverted;
     for (std::size_t q = 0; q < quad_sj_.size(); ++q)
       if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
     std::vector<char> listed(mesh_.quads.size(), 0);
     std::vector<int> nodes;
-    int passes = 0;
+    std::size_t fewest = inverted.size();
+    int passes = 0, rings = 0, stalled = 0;
+    bool relaxed = false;
     while (!inverted.empty() && passes < kUntanglePasses) {
       ++passes;
-      nodes.clear();
-      for (int q : inverted)
-        for (int n : mesh_.quads[q])
-          if (movable_[n]) nodes.push_back(n);
-      std::sort(nodes.begin(), nodes.end());
-      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      region(inverted, rings, nodes);
       bool progress = false;
-      for (int n : nodes) progress |= optimise_node<false>(n);
-      if (!progress) break;
+      for (int n : nodes)
+        if (movable_[n]) progress |= optimise_node<false>(n);
       // Only quads around the nodes just handled can have changed.
       std::vector<int> still;
       const auto keep = [&](int q) {
@@ -426,6 +480,23 @@ class Smoother {
         for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) keep(corners_[k] / 4);
       for (int q : still) listed[q] = 0;
       inverted.swap(still);
+      if (inverted.size() < fewest) {
+        fewest = inverted.size(), stalled = 0;
+      } else if (++stalled >= kUntangleStall || !progress) {
+        if (rings < kUntangleRings) {
+          ++rings, stalled = 0;
+        } else if (!relaxed) {
+          relaxed = true;
+          region(inverted, 2 * kUntangleRings, nodes);
+          relax_region(nodes);
+          inverted.clear();
+          for (std::size_t q = 0; q < quad_sj_.size(); ++q)
+            if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
+          fewest = inverted.size(), rings = 0, stalled = 0;
+        } else {
+          break;
+        }
+      }
     }
     return passes;
   }
@@ -464,6 +535,7 @@ class Smoother {
   std::vector<int> behind_;  // boundary neighbours against and along the loop
   std::vector<int> ahead_;
   std::vector<double> quad_sj_;
+  std::vector<char> picked_;  // scratch flags of region()
 };
 
 }  // namespace
