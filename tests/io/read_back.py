@@ -279,7 +279,7 @@ def main(argv):
             print(f"ok   {e['path']}: {', '.join(checked)}")
         except Exception as error:  # report every file, then fail
             failures += 1
-            print(f"FAIL {e['path']}: {error}")
+            print(f"FAIL {error}")
     print(f"{len(entries) - failures} of {len(entries)} mesh files read back")
     return 1 if failures else 0
 

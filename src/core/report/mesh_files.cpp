@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
+#include <charconv>
 #include <fstream>
 #include <ostream>
 #include <string>
@@ -32,15 +32,19 @@ ElementNodes element_nodes(const QuadMesh& mesh, std::size_t q) {
 }
 
 // 17 significant digits: a double read back is the double written.
-std::string number(double v) {
+void put_number(std::ostream& out, double v) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
+  const auto end = std::to_chars(text, text + sizeof text, v, std::chars_format::general, 17).ptr;
+  out.write(text, end - text);
 }
 
-std::string point_3d(const Frame& frame, Vec2 p, const char* separator) {
+void put_point_3d(std::ostream& out, const Frame& frame, Vec2 p, const char* separator) {
   const auto q = to_3d(frame, p);
-  return number(q[0]) + separator + number(q[1]) + separator + number(q[2]);
+  put_number(out, q[0]);
+  out << separator;
+  put_number(out, q[1]);
+  out << separator;
+  put_number(out, q[2]);
 }
 
 void check_mesh(const QuadMesh& mesh, const std::string& path) {
@@ -61,8 +65,11 @@ void write_inp(std::ostream& out, const QuadMesh& mesh, const Frame& frame, cons
   const bool quadratic = mesh.order() == 2;
   const char* type = options.shell_elements ? (quadratic ? "S8" : "S4") : (quadratic ? "CPS8" : "CPS4");
   out << "*HEADING\nMedialMesh quad mesh\n*NODE, NSET=NALL\n";
-  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
-    out << n + 1 << ", " << point_3d(frame, mesh.nodes[n], ", ") << '\n';
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    out << n + 1 << ", ";
+    put_point_3d(out, frame, mesh.nodes[n], ", ");
+    out << '\n';
+  }
   out << "*ELEMENT, TYPE=" << type << ", ELSET=EALL\n";
   for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
     out << q + 1;
@@ -98,11 +105,18 @@ void write_msh(std::ostream& out, const QuadMesh& mesh, const Frame& frame) {
   // reading its files keep the elements.
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   out << "$PhysicalNames\n1\n2 1 \"face\"\n$EndPhysicalNames\n";
-  out << "$Entities\n0 0 1 0\n1 " << number(low[0]) << ' ' << number(low[1]) << ' ' << number(low[2]) << ' '
-      << number(high[0]) << ' ' << number(high[1]) << ' ' << number(high[2]) << " 1 1 0\n$EndEntities\n";
+  out << "$Entities\n0 0 1 0\n1";
+  for (double v : {low[0], low[1], low[2], high[0], high[1], high[2]}) {
+    out << ' ';
+    put_number(out, v);
+  }
+  out << " 1 1 0\n$EndEntities\n";
   out << "$Nodes\n1 " << nodes << " 1 " << nodes << "\n2 1 0 " << nodes << '\n';
   for (std::size_t n = 0; n < nodes; ++n) out << n + 1 << '\n';
-  for (std::size_t n = 0; n < nodes; ++n) out << point_3d(frame, mesh.nodes[n], " ") << '\n';
+  for (std::size_t n = 0; n < nodes; ++n) {
+    put_point_3d(out, frame, mesh.nodes[n], " ");
+    out << '\n';
+  }
   out << "$EndNodes\n$Elements\n1 " << quads << " 1 " << quads << "\n2 1 " << type << ' ' << quads << '\n';
   for (std::size_t q = 0; q < quads; ++q) {
     out << q + 1;
@@ -120,7 +134,10 @@ void write_vtu(std::ostream& out, const QuadMesh& mesh, const Frame& frame) {
       << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.nodes.size() << "\" NumberOfCells=\""
       << mesh.quads.size() << "\">\n";
   out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Vec2& p : mesh.nodes) out << point_3d(frame, p, " ") << '\n';
+  for (const Vec2& p : mesh.nodes) {
+    put_point_3d(out, frame, p, " ");
+    out << '\n';
+  }
   out << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
     const auto nodes = element_nodes(mesh, q);
