@@ -127,8 +127,13 @@ def check_meshio(path, expected_nodes, expected_elements, expected_area, frame):
     check(np.abs(off_plane).max() <= 1e-12 * size + 1e-12 * np.abs(points).max(), path,
           f"points lie up to {np.abs(off_plane).max():.3g} off the face's plane")
     areas = corner_area(uv, connectivity[:, :4])
-    check(areas.min() > 0, path, f"{int((areas <= 0).sum())} elements are clockwise in the face's plane")
-    check(close(areas.sum(), expected_area, 1e-12), path, f"area {areas.sum()!r}, expected {expected_area!r}")
+    # Plane-stress .inp elements of a face seen from below run clockwise in
+    # its frame (CalculiX wants them counter-clockwise from +z): one sense for all.
+    reversed_ok = path.endswith(".inp") and inp_element_type(path).startswith("CPS") and frame["normal"][2] < 0
+    sense = -1.0 if reversed_ok else 1.0
+    check((sense * areas).min() > 0, path, f"{int((sense * areas <= 0).sum())} elements run the wrong way round "
+          "in the face's plane")
+    check(close(sense * areas.sum(), expected_area, 1e-12), path, f"area {areas.sum()!r}, expected {expected_area!r}")
     if connectivity.shape[1] == 8:
         # Node 4 + i sits on side i (corner i to i + 1): near that side's
         # midpoint, far from every other side's.
@@ -139,8 +144,9 @@ def check_meshio(path, expected_nodes, expected_elements, expected_area, frame):
         worst = (offset / side_length).max()
         check(worst < 0.25, path, f"a mid-side node lies {worst:.3g} side lengths from its side's midpoint")
     element_areas, least_jacobian = isoparametric_areas(uv, connectivity)
-    check(least_jacobian.min() > 0, path, f"{int((least_jacobian <= 0).sum())} elements have a non-positive Jacobian")
-    return types.pop(), element_areas.sum()
+    check((sense * least_jacobian).min() > 0, path,
+          f"{int((sense * least_jacobian <= 0).sum())} elements have a Jacobian of the wrong sign")
+    return types.pop(), sense * element_areas.sum()
 
 
 def check_gmsh(path, expected_nodes, expected_elements, order):

@@ -1,7 +1,7 @@
 // Writes a structured mesh of an annulus sector at order 1 and 2 in every
-// mesh file format, placed by two frames (one in the global XY plane for
-// plane-stress elements, one tilted for shells), plus manifest.json with what
-// tests/io/read_back.py must find in each file.
+// mesh file format, placed by three frames (two in the global XY plane,
+// facing up and down, for plane-stress elements, one tilted for shells), plus
+// manifest.json with what tests/io/read_back.py must find in each file.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -98,6 +98,8 @@ int main(int argc, char** argv) {
   // Turned 30 degrees about z and shifted: still the global XY plane, as CPS elements need.
   const double c = std::cos(mm::kPi / 6), s = std::sin(mm::kPi / 6);
   const mm::Frame plane{{10.0, -5.0, 0.0}, {c, s, 0.0}, {-s, c, 0.0}, {0.0, 0.0, 1.0}};
+  // The XY plane seen from below: CPS elements must be written reversed.
+  const mm::Frame flipped{{-3.0, 4.0, 0.0}, {c, s, 0.0}, {s, -c, 0.0}, {0.0, 0.0, -1.0}};
   // A plane tilted out of every coordinate plane, for shells.
   const double a = 1.0 / std::sqrt(2.0), b = 1.0 / std::sqrt(6.0), n = 1.0 / std::sqrt(3.0);
   const mm::Frame tilted{{1.0, 2.0, 3.0}, {a, a, 0.0}, {-b, b, 2.0 * b}, {n, -n, n}};
@@ -105,7 +107,8 @@ int main(int argc, char** argv) {
   nlohmann::json manifest = nlohmann::json::array();
   for (int order : {1, 2}) {
     const mm::QuadMesh mesh = annulus_sector(order);
-    for (const auto& [name, frame] : {std::pair{"plane", plane}, std::pair{"tilted", tilted}}) {
+    for (const auto& [name, frame] :
+         {std::pair{"plane", plane}, std::pair{"flipped", flipped}, std::pair{"tilted", tilted}}) {
       for (const char* extension : {".inp", ".msh", ".vtu"}) {
         const std::string file = "sector_o" + std::to_string(order) + "_" + name + extension;
         const std::string path = (folder / file).string();

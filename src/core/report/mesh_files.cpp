@@ -70,10 +70,19 @@ void write_inp(std::ostream& out, const QuadMesh& mesh, const Frame& frame, cons
     put_point_3d(out, frame, mesh.nodes[n], ", ");
     out << '\n';
   }
+  // Plane-stress elements must run counter-clockwise seen from +z: a face
+  // whose frame looks down the z axis gets its elements reversed.
+  const bool reverse = !options.shell_elements && frame.x_dir[0] * frame.y_dir[1] - frame.x_dir[1] * frame.y_dir[0] < 0;
   out << "*ELEMENT, TYPE=" << type << ", ELSET=EALL\n";
   for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
+    ElementNodes nodes = element_nodes(mesh, q);
+    if (reverse) {
+      // Corners 0 3 2 1; the sides then run 3, 2, 1, 0 backwards.
+      std::reverse(nodes.ids.begin() + 1, nodes.ids.begin() + 4);
+      std::reverse(nodes.ids.begin() + 4, nodes.ids.begin() + nodes.count);
+    }
     out << q + 1;
-    for (int v : element_nodes(mesh, q)) out << ", " << v + 1;
+    for (int v : nodes) out << ", " << v + 1;
     out << '\n';
   }
   std::vector<int> boundary;
