@@ -12,9 +12,12 @@ Run with Debian's /usr/bin/python3, which has python3-meshio and python3-gmsh.
   read_back.py MANIFEST.json       entries written by write_sample_meshes
   read_back.py MESH NODES ELEMENTS AREA [FRAME.json]
 
-From Python: read_back(path, expected_nodes, expected_elements, expected_area,
-frame) with frame a dict of origin, x_dir, y_dir, normal (3 numbers each);
-it raises ReadBackError naming the file and the mismatch.
+From Python (sys.path.insert(0, "tests/io"); from read_back import read_back):
+read_back(path, expected_nodes, expected_elements, expected_area, frame) with
+expected_area the sum of the corner quads' areas (QualityReport::area) and
+frame a dict of origin, x_dir, y_dir, normal (3 numbers each, default the
+XY plane); it returns what was checked and raises ReadBackError naming the
+file and the mismatch. CalculiX needs CPS elements in the plane z = 0.
 """
 import json
 import math
@@ -136,13 +139,13 @@ def check_meshio(path, expected_nodes, expected_elements, expected_area, frame):
     check(close(sense * areas.sum(), expected_area, 1e-12), path, f"area {areas.sum()!r}, expected {expected_area!r}")
     if connectivity.shape[1] == 8:
         # Node 4 + i sits on side i (corner i to i + 1): near that side's
-        # midpoint, far from every other side's.
+        # midpoint (a 90 degree arc bulges 0.21 chords), far from the others'.
         c = uv[connectivity[:, :4]]
         side_mid = 0.5 * (c + np.roll(c, -1, axis=1))
         side_length = np.linalg.norm(np.roll(c, -1, axis=1) - c, axis=2)
         offset = np.linalg.norm(uv[connectivity[:, 4:]] - side_mid, axis=2)
         worst = (offset / side_length).max()
-        check(worst < 0.25, path, f"a mid-side node lies {worst:.3g} side lengths from its side's midpoint")
+        check(worst < 0.4, path, f"a mid-side node lies {worst:.3g} side lengths from its side's midpoint")
     element_areas, least_jacobian = isoparametric_areas(uv, connectivity)
     check((sense * least_jacobian).min() > 0, path,
           f"{int((sense * least_jacobian <= 0).sum())} elements have a Jacobian of the wrong sign")
