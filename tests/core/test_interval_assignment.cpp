@@ -133,6 +133,22 @@ TEST(IntervalAssignment, RectangleOppositeSidesBecomeEqualNearTheirGoals) {
   EXPECT_EQ(a.counts, (std::vector<int>{10, 5, 10, 5}));
 }
 
+TEST(IntervalAssignment, FlatCornerSplitsASideKeepingItsHeading) {
+  // The bottom is two sides meeting at a flat corner (type 2): 4 + 6 = top.
+  IntervalProblem p = submap({1, 2, 1, 1, 1}, {4, 6, 5, 9, 5});
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[0] + a.counts[1], a.counts[3]);
+  EXPECT_EQ(a.counts[2], a.counts[4]);
+  EXPECT_LE(deviation(p, a.counts), deviation(p, {4, 5, 5, 9, 5}) + 1e-9);
+}
+
+TEST(IntervalAssignment, EmptyProblemHasAnEmptyAnswer) {
+  const IntervalAssignment a = assign_intervals(IntervalProblem{});
+  EXPECT_TRUE(a.counts.empty());
+  EXPECT_TRUE(a.params.empty());
+}
+
 TEST(IntervalAssignment, LShapedSubmap) {
   // Headings 0, 1, 2, 1, 2, 3: the reflex corner 3 turns right.
   const std::vector<int> types{1, 1, 1, 3, 1, 1};

@@ -417,6 +417,7 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
   for (size_t b = 0; b < problem.blocks.size(); ++b)
     if (problem.blocks[b].kind == BlockTemplate::Submap) submap_directions(problem.blocks[b], b);
 
+  if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
   const BuiltModel built = build(problem, problem.blocks.size());
   const Model::Outcome outcome = built.model.solve();
   if (outcome.infeasible) {
