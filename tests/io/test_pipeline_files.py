@@ -21,7 +21,7 @@ from read_back import read_back  # noqa: E402
 def main(build, shared):
     cli = os.path.join(build, "bin", "medialmesh")
     faces = [os.path.join(shared, "geometry", "plate_with_hole.brep"),
-             os.path.join(shared, "geometry", "aerofoil3.brep"),
+             os.path.join(shared, "geometry", "bracket.brep"),
              os.path.join(shared, "realcad", "faces", "occt_pumpcover_8.brep")]
     with tempfile.TemporaryDirectory() as scratch:
         for face in faces:

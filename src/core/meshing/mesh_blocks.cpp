@@ -176,7 +176,11 @@ class BlockMesher {
     }
     const auto t2 = std::chrono::steady_clock::now();
     if (options_.smooth) {
+      // Boundary nodes stay where their spacing put them: sliding them for
+      // the elements' sake let single intervals span too much of a small
+      // hole (the chordal error grew past what interval assignment bounded).
       SmoothingOptions smoothing;
+      smoothing.move_boundary = false;
       smooth_mesh(face_, mesh_, smoothing);
     }
     const auto t3 = std::chrono::steady_clock::now();

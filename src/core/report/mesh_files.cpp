@@ -31,20 +31,25 @@ ElementNodes element_nodes(const QuadMesh& mesh, std::size_t q) {
   return nodes;
 }
 
-// 17 significant digits: a double read back is the double written.
-void put_number(std::ostream& out, double v) {
+// 17 significant digits: a double read back is the double written. The
+// .inp format keeps 12: CalculiX reads at most 20 characters a field and
+// silently misreads longer numbers.
+constexpr int kExactDigits = 17;
+constexpr int kInpDigits = 12;
+
+void put_number(std::ostream& out, double v, int digits = kExactDigits) {
   char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, v, std::chars_format::general, 17).ptr;
+  const auto end = std::to_chars(text, text + sizeof text, v, std::chars_format::general, digits).ptr;
   out.write(text, end - text);
 }
 
-void put_point_3d(std::ostream& out, const Frame& frame, Vec2 p, const char* separator) {
+void put_point_3d(std::ostream& out, const Frame& frame, Vec2 p, const char* separator, int digits = kExactDigits) {
   const auto q = to_3d(frame, p);
-  put_number(out, q[0]);
+  put_number(out, q[0], digits);
   out << separator;
-  put_number(out, q[1]);
+  put_number(out, q[1], digits);
   out << separator;
-  put_number(out, q[2]);
+  put_number(out, q[2], digits);
 }
 
 void check_mesh(const QuadMesh& mesh, const std::string& path) {
@@ -67,7 +72,7 @@ void write_inp(std::ostream& out, const QuadMesh& mesh, const Frame& frame, cons
   out << "*HEADING\nMedialMesh quad mesh\n*NODE, NSET=NALL\n";
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     out << n + 1 << ", ";
-    put_point_3d(out, frame, mesh.nodes[n], ", ");
+    put_point_3d(out, frame, mesh.nodes[n], ", ", kInpDigits);
     out << '\n';
   }
   // Plane-stress elements must run counter-clockwise seen from +z: a face
