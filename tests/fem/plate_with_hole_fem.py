@@ -423,7 +423,7 @@ def main():
             mesh, sigma_xx, fraction = finest
             picture = os.path.join(args.out, "plate_with_hole_sxx.png")
             draw_stress(mesh, sigma_xx, picture,
-                        "sigma_xx, medialmesh CPS8 H = W/%d, %g MPa tension along x" % (fraction, TRACTION))
+                        "medialmesh CPS8, H = W/%d, %g MPa pulling along x" % (fraction, TRACTION))
             with open(os.path.join(args.out, "plate_with_hole_fem.md"), "w") as f:
                 f.write(table + "\n")
             print("picture: %s" % picture)
