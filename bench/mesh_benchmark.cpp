@@ -28,6 +28,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "occ/occ_reader.hpp"
@@ -529,33 +530,34 @@ void run_scaling(const fs::path& shared, const std::string& face_name, unsigned 
   const fs::path path = shared / "geometry" / (face_name + ".brep");
   const mm::FaceModel face = mm::read_face_models(path.string(), {}).front();
   const std::vector<double> targets = {1e3, 1e4, 1e5, 1e6};
-  std::vector<std::pair<double, ScalingRun>> runs;
+  std::vector<std::tuple<double, double, ScalingRun>> runs;  // target quads, H, result
   // Quads grow as area / H^2; the first run calibrates the constant.
   double quads_per_area_over_h2 = 1.0;
   for (const double target : targets) {
     const double size = std::sqrt(quads_per_area_over_h2 * face.area / target);
     ScalingRun run = mesh_for_scaling(face, size, timeout);
     if (runs.empty() && run.failure.empty()) quads_per_area_over_h2 = run.quads * size * size / face.area;
-    runs.emplace_back(size, run);
+    runs.emplace_back(target, size, run);
   }
 
   std::vector<std::string> stage_names;
   for (const auto& entry : runs) {
-    for (const auto& stage : entry.second.stages) {
+    for (const auto& stage : std::get<2>(entry).stages) {
       if (std::find(stage_names.begin(), stage_names.end(), stage.first) == stage_names.end())
         stage_names.push_back(stage.first);
     }
   }
   std::cout << "\n## Scaling: " << face_name << " (diagonal " << fixed(face.size, 3) << ")\n\n"
             << "Seconds per stage of mesh_face (order 1, default options); peak RSS of the child process that "
-               "meshed (getrusage), of which the first column's share was there before meshing.\n\n"
-            << "| H | quads | nodes";
+               "meshed (getrusage); \"before MB\" is that child's peak before meshing, inherited from the "
+               "benchmark itself.\n\n"
+            << "| target quads | H | quads | nodes";
   for (const std::string& name : stage_names) std::cout << " | " << name << " s";
   std::cout << " | total s | peak MB | before MB |\n|";
-  for (std::size_t i = 0; i < stage_names.size() + 6; ++i) std::cout << "---:|";
+  for (std::size_t i = 0; i < stage_names.size() + 7; ++i) std::cout << "---:|";
   std::cout << "\n";
-  for (const auto& [size, run] : runs) {
-    std::cout << "| " << fixed(size, 5);
+  for (const auto& [target, size, run] : runs) {
+    std::cout << "| " << fixed(target, 0) << " | " << fixed(size, 5);
     if (!run.failure.empty()) {
       std::cout << " | " << run.failure << " |\n";
       continue;
