@@ -2,7 +2,8 @@
 # The main job on the bundled example face: installs what is missing, builds,
 # and writes the face report (text and JSON), the medial axis (JSON), the mesh
 # flow with its singularities (text and JSON), the block decomposition (JSON,
-# picture and the block faces as BREP), their pictures, and a FreeCAD
+# picture and the block faces as BREP), the all-quad mesh (.inp, .msh, .vtu,
+# its quality report as text and JSON, and its picture), and a FreeCAD
 # document with the face analysed and decomposed plus a picture of its 3D
 # view into out/.
 #   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
@@ -34,6 +35,11 @@ kinds = [b["kind"] for b in d["blocks"]]
 print(f"decomposition: {len(d['blocks'])} blocks ({kinds.count('polygon')} polygons, "
       f"{kinds.count('submap')} submappable), {len(d['splits'])} splits, {len(d['fixed'])} fixed singularities")
 PY
+# The all-quad mesh in the three file formats, its quality report and picture.
+"$cli" mesh "$input" -o "$out/$name.mesh.inp" --svg "$out/$name.mesh.svg" | tee "$out/$name.mesh.txt"
+"$cli" mesh "$input" -o "$out/$name.mesh.msh" --json >"$out/$name.mesh.json"
+"$cli" mesh "$input" -o "$out/$name.mesh.vtu" >/dev/null
+rsvg-convert -o "$out/$name.mesh.png" "$out/$name.mesh.svg"
 # The same face analysed in FreeCAD, as a user would: a document and a picture.
 home="$(mktemp -d)"
 trap 'rm -rf "$home"' EXIT
@@ -46,4 +52,5 @@ echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and cor
   "$name.medial.json, $name.medial.svg/.png (medial axis)," \
   "$name.singularities.txt/.json/.svg/.png (flow types and singularities)," \
   "$name.decomposition.json/.svg/.png and $name.blocks.brep (the blocks)," \
+  "$name.mesh.inp/.msh/.vtu, $name.mesh.txt/.json (quality) and $name.mesh.svg/.png (the quad mesh)," \
   "$name.freecad.FCStd/.png (the analysis and decomposition in FreeCAD)"

@@ -22,13 +22,23 @@ struct IntervalProblem {
 struct IntervalAssignment {
   std::vector<int> counts;               // per segment
   std::vector<std::vector<int>> params;  // per block, see block_shape.hpp
-  bool relaxed = false;                  // some goal or lower bound had to give way
+  // Never set by assign_intervals: every block condition is a homogeneous
+  // linear equation, so scaling any answer up meets any lower bounds; only
+  // the goals give way, and they always may.
+  bool relaxed = false;
   std::vector<std::string> notes;
 };
 
-// Least weighted relative deviation from the goals subject to every block's
-// conditions. Never fails on a problem some counts satisfy; throws
-// std::runtime_error naming the block when none can.
+// Least weighted relative deviation from the goals, sum |n_s - goal_s| /
+// max(goal_s, 1), subject to every block's conditions (block_shape.hpp) and
+// n_s >= min_count. Template parameters the equations leave free (Disc a, b;
+// TwoSided and OneSided u, v) are chosen by a tie-break far below one
+// interval of deviation: a ~ b, the midpoint triangle's sides alike, OneSided
+// u ~ v with its two rest sides alike. Solved by CBC (10 s limit, best
+// integer answer then). Bad input (ids out of range, wrong side or corner
+// counts, a submap outline not turning +4) throws std::invalid_argument; a
+// problem no counts satisfy throws std::runtime_error naming the first block
+// whose conditions cannot hold with those before it.
 IntervalAssignment assign_intervals(const IntervalProblem& problem);
 
 }  // namespace mm

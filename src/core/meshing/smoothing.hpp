@@ -17,11 +17,14 @@ struct SmoothingResult {
   double min_scaled_jacobian_after = 0.0;
   int inverted_before = 0;
   int inverted_after = 0;
-  int sweeps = 0;
+  int sweeps = 0;  // smoothing sweeps, untangling passes included
 };
 
 // Never lowers the minimum scaled Jacobian of a mesh with no inverted
-// element; face corners never move.
+// element; face corners never move. Order-1 meshes only (throws
+// std::invalid_argument otherwise, and on nodes or places that do not fit
+// the mesh or the face). Boundary nodes keep their loop and edge, stay
+// strictly between their boundary neighbours and keep places[n].t in step.
 SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options);
 
 }  // namespace mm

@@ -22,7 +22,7 @@ struct QualityReport {
   int inverted = 0;   // elements with a non-positive scaled Jacobian at some corner
   double min_scaled_jacobian = 0.0;
   double mean_scaled_jacobian = 0.0;  // mean over elements of their minimum corner value
-  double min_angle = 0.0;             // degrees
+  double min_angle = 0.0;             // interior, degrees; an inverted quad shows angles over 180
   double max_angle = 0.0;
   int worst_element = -1;  // the element with the least scaled Jacobian
   double area = 0.0;       // sum of element areas (signed, as meshed)
@@ -35,6 +35,10 @@ struct QualityReport {
 // Scaled Jacobian of a quad at its worst corner, in [-1, 1].
 double scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
+// Linear time. stage_seconds and seconds are left for the pipeline to fill.
+// Nodes no quad uses as a corner (order-2 mid-side nodes) have no valence;
+// order-2 elements are measured by their corner quads.
+// Throws InputError when a quad refers to a missing node or places and nodes differ in number.
 QualityReport measure_quality(const QuadMesh& mesh);
 
 }  // namespace mm

@@ -14,6 +14,14 @@ struct MeshFileOptions {
 
 // The format comes from the extension (.inp, .msh, .vtu). Throws InputError
 // naming the path for an unknown extension or a file that cannot be written.
+// Nodes and elements keep the mesh's order (1-based in .inp and .msh); an
+// 8-node quad lists its corners, then the mid-side node of each side i
+// (corner i to i + 1), as all three formats do. .inp: node set NALL, element
+// set EALL, boundary node set NBOUNDARY; plane-stress elements are written
+// reversed when the frame looks down the z axis, since CalculiX wants them
+// counter-clockwise seen from +z (and in the plane z = 0, which is the
+// caller's choice of frame). .msh: one surface entity in physical group 1
+// "face". .vtu: the decomposition block of each element as cell data.
 void write_mesh_file(const QuadMesh& mesh, const Frame& frame, const std::string& path,
                      const MeshFileOptions& options = {});
 

@@ -1,0 +1,439 @@
+// Interval assignment as one integer program solved by CBC: integer counts per
+// segment and per template parameter, continuous deviations from the goals.
+#include "meshing/interval_assignment.hpp"
+
+#include <coin/Cbc_C_Interface.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "boundary/face_model.hpp"
+
+namespace mm {
+namespace {
+
+constexpr double kUnbounded = std::numeric_limits<double>::max();
+constexpr double kTimeLimitSeconds = 10.0;
+
+// Column -> coefficient; a std::map keeps rows deterministic and lets a
+// segment that appears on opposite sides of one block cancel out.
+using LinearExpr = std::map<int, double>;
+
+void add_to(LinearExpr& e, const LinearExpr& other, double factor) {
+  for (const auto& [col, coef] : other) e[col] += factor * coef;
+}
+
+LinearExpr difference(const LinearExpr& a, const LinearExpr& b) {
+  LinearExpr e = a;
+  add_to(e, b, -1.0);
+  return e;
+}
+
+LinearExpr column(int col) {
+  return LinearExpr{{col, 1.0}};
+}
+
+std::string block_name(size_t b) {
+  return "interval assignment: block " + std::to_string(b);
+}
+
+int expected_sides(const BlockShape& block) {
+  switch (block.kind) {
+    case BlockTemplate::Disc: return 1;
+    case BlockTemplate::OneSided: return 1;
+    case BlockTemplate::TwoSided: return 2;
+    case BlockTemplate::Midpoint:
+    case BlockTemplate::Submap: return -1;
+  }
+  return -1;
+}
+
+void validate(const IntervalProblem& problem) {
+  for (size_t s = 0; s < problem.segments.size(); ++s) {
+    const IntervalSegment& seg = problem.segments[s];
+    if (!std::isfinite(seg.goal) || seg.goal < 0)
+      throw std::invalid_argument("interval assignment: segment " + std::to_string(s) + " has goal " +
+                                  std::to_string(seg.goal) + " (must be finite and >= 0)");
+    if (seg.min_count < 1)
+      throw std::invalid_argument("interval assignment: segment " + std::to_string(s) + " has min_count " +
+                                  std::to_string(seg.min_count) + " (must be >= 1)");
+  }
+  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+    const BlockShape& block = problem.blocks[b];
+    const size_t sides = block.side_segments.size();
+    const int expected = expected_sides(block);
+    if (expected > 0 && static_cast<int>(sides) != expected)
+      throw std::invalid_argument(block_name(b) + " has " + std::to_string(sides) + " sides, its template needs " +
+                                  std::to_string(expected));
+    if (block.kind == BlockTemplate::Midpoint && sides != 3 && sides != 5 && sides != 6)
+      throw std::invalid_argument(block_name(b) + ": midpoint subdivision takes 3, 5 or 6 sides, not " +
+                                  std::to_string(sides));
+    if (block.kind == BlockTemplate::Submap && sides < 2)
+      throw std::invalid_argument(block_name(b) + ": a submapped block needs at least 2 sides");
+    const size_t corners = block.kind == BlockTemplate::Disc ? 0 : sides;
+    if (block.corner_types.size() != corners)
+      throw std::invalid_argument(block_name(b) + " has " + std::to_string(block.corner_types.size()) +
+                                  " corner types for " + std::to_string(corners) + " corners");
+    for (int type : block.corner_types)
+      if (type < 0 || type > 4)
+        throw std::invalid_argument(block_name(b) + " has corner type " + std::to_string(type) + " (must be 0..4)");
+    for (size_t i = 0; i < sides; ++i) {
+      if (block.side_segments[i].empty())
+        throw std::invalid_argument(block_name(b) + ": side " + std::to_string(i) + " has no segment");
+      for (int s : block.side_segments[i])
+        if (s < 0 || s >= static_cast<int>(problem.segments.size()))
+          throw std::invalid_argument(block_name(b) + ": side " + std::to_string(i) + " names segment " +
+                                      std::to_string(s) + ", there are " + std::to_string(problem.segments.size()));
+    }
+  }
+}
+
+// dir_0 = 0, dir_{i+1} = dir_i + (2 - type_{i+1}) mod 4; the turning must close.
+std::vector<int> submap_directions(const BlockShape& block, size_t b) {
+  const std::vector<int>& types = block.corner_types;
+  int turning = 0;
+  for (int type : types) turning += 2 - type;
+  if (turning != 4)
+    throw std::invalid_argument(block_name(b) + ": submap outline turns " + std::to_string(turning) +
+                                " quarter turns, a closed counter-clockwise outline turns 4");
+  std::vector<int> dirs(types.size(), 0);
+  for (size_t i = 1; i < types.size(); ++i) dirs[i] = ((dirs[i - 1] + 2 - types[i]) % 4 + 4) % 4;
+  return dirs;
+}
+
+// The integer program: columns are added as the blocks need them.
+class Model {
+ public:
+  int add_column(double lower, double upper, double cost, bool integer) {
+    lower_.push_back(lower);
+    upper_.push_back(upper);
+    cost_.push_back(cost);
+    integer_.push_back(integer);
+    return static_cast<int>(lower_.size()) - 1;
+  }
+  int add_integer(double lower) { return add_column(lower, kUnbounded, 0.0, true); }
+
+  void add_equation(const LinearExpr& e, double rhs) {
+    LinearExpr row;
+    for (const auto& [col, coef] : e)
+      if (coef != 0.0) row[col] = coef;
+    if (!row.empty()) rows_.push_back({std::move(row), rhs});
+  }
+
+  // |e| costs `weight`: e = plus - minus with both >= 0.
+  void add_deviation(const LinearExpr& e, double target, double weight) {
+    LinearExpr row = e;
+    row[add_column(0.0, kUnbounded, weight, false)] -= 1.0;
+    row[add_column(0.0, kUnbounded, weight, false)] += 1.0;
+    add_equation(row, target);
+  }
+
+  size_t columns() const { return lower_.size(); }
+
+  struct Outcome {
+    bool infeasible = false;
+    bool proven_optimal = false;
+    std::vector<double> values;
+  };
+
+  Outcome solve() const;
+
+ private:
+  std::vector<double> lower_, upper_, cost_;
+  std::vector<bool> integer_;
+  std::vector<std::pair<LinearExpr, double>> rows_;
+};
+
+// CBC's solver keeps global state (CbcMain1): one solve at a time.
+std::mutex& cbc_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+Model::Outcome Model::solve() const {
+  const int n_cols = static_cast<int>(columns());
+  const int n_rows = static_cast<int>(rows_.size());
+  // Compressed sparse columns, as Cbc_loadProblem takes them.
+  std::vector<std::vector<std::pair<int, double>>> by_column(n_cols);
+  for (int r = 0; r < n_rows; ++r)
+    for (const auto& [col, coef] : rows_[r].first) by_column[col].push_back({r, coef});
+  std::vector<CoinBigIndex> starts{0};
+  std::vector<int> indices;
+  std::vector<double> values;
+  for (const auto& entries : by_column) {
+    for (const auto& [row, coef] : entries) {
+      indices.push_back(row);
+      values.push_back(coef);
+    }
+    starts.push_back(static_cast<CoinBigIndex>(indices.size()));
+  }
+  std::vector<double> rhs(n_rows);
+  for (int r = 0; r < n_rows; ++r) rhs[r] = rows_[r].second;
+
+  std::lock_guard<std::mutex> lock(cbc_mutex());
+  std::unique_ptr<Cbc_Model, void (*)(Cbc_Model*)> model(Cbc_newModel(), Cbc_deleteModel);
+  Cbc_loadProblem(model.get(), n_cols, n_rows, starts.data(), indices.data(), values.data(), lower_.data(),
+                  upper_.data(), cost_.data(), rhs.data(), rhs.data());
+  for (int c = 0; c < n_cols; ++c)
+    if (integer_[c]) Cbc_setInteger(model.get(), c);
+  Cbc_setObjSense(model.get(), 1.0);
+  Cbc_setLogLevel(model.get(), 0);
+  Cbc_setParameter(model.get(), "log", "0");
+  Cbc_setParameter(model.get(), "slog", "0");
+  Cbc_setMaximumSeconds(model.get(), kTimeLimitSeconds);
+  // Measured on a 40 x 40 grid with midpoint blocks: CBC's default
+  // heuristics cost several times the branching itself; the feasibility
+  // pump alone still finds an integer answer early.
+  Cbc_setParameter(model.get(), "heur", "off");
+  Cbc_setParameter(model.get(), "feas", "on");
+  Cbc_solve(model.get());
+
+  Outcome outcome;
+  const double* best = Cbc_bestSolution(model.get());
+  if (best) {
+    outcome.values.assign(best, best + n_cols);
+    outcome.proven_optimal = Cbc_isProvenOptimal(model.get());
+    return outcome;
+  }
+  if (Cbc_isProvenInfeasible(model.get()) || Cbc_isInitialSolveProvenPrimalInfeasible(model.get()) ||
+      (Cbc_status(model.get()) == 0 && !Cbc_isSecondsLimitReached(model.get()))) {
+    outcome.infeasible = true;
+    return outcome;
+  }
+  throw std::runtime_error("interval assignment: CBC found no integer solution within " +
+                           std::to_string(static_cast<int>(kTimeLimitSeconds)) + " s (status " +
+                           std::to_string(Cbc_status(model.get())) + ", secondary " +
+                           std::to_string(Cbc_secondaryStatus(model.get())) + ")");
+}
+
+struct BuiltModel {
+  Model model;
+  std::vector<int> count_columns;               // per segment
+  std::vector<std::vector<int>> param_columns;  // per block
+};
+
+// weight * |n - goal| as the LP sees it at integer n only: from floor(goal)
+// up one unit the cost changes by weight * (1 - 2 frac), then by weight a
+// unit either way. Breakpoints at integers make the relaxation's optimum
+// integral on chains of equal sides, which spares CBC most of its branching.
+void add_goal_deviation(Model& model, int n, double goal, double weight) {
+  const double base = std::floor(goal);
+  const double frac = goal - base;
+  LinearExpr row = column(n);
+  row[model.add_column(0.0, 1.0, weight * (1.0 - 2.0 * frac), false)] -= 1.0;
+  row[model.add_column(0.0, kUnbounded, weight, false)] -= 1.0;
+  row[model.add_column(0.0, kUnbounded, weight, false)] += 1.0;
+  model.add_equation(row, base);
+}
+
+// The midpoint equations L_i = c_{i-1} + c_{i+1}; returns the c columns.
+std::vector<int> add_midpoint(Model& model, const std::vector<LinearExpr>& sides) {
+  const int m = static_cast<int>(sides.size());
+  std::vector<int> c(m);
+  for (int i = 0; i < m; ++i) c[i] = model.add_integer(1.0);
+  for (int i = 0; i < m; ++i) {
+    LinearExpr row = sides[i];
+    row[c[(i + m - 1) % m]] -= 1.0;
+    row[c[(i + 1) % m]] -= 1.0;
+    model.add_equation(row, 0.0);
+  }
+  return c;
+}
+
+// TwoSided on sides n_0, n_1: u, v, then the midpoint c_0..c_2 of the rest.
+// `balance` weighs a tie-break towards an even triangle (L_0 ~ L_1 ~ L_2):
+// the equations leave u and v free, and lopsided choices make poor elements.
+std::vector<int> add_two_sided(Model& model, const LinearExpr& n0, const LinearExpr& n1, double balance) {
+  const int u = model.add_integer(1.0);
+  const int v = model.add_integer(1.0);
+  LinearExpr l0 = n0, l1 = n1, l2 = column(u);
+  l0[u] -= 1.0;
+  l1[v] -= 1.0;
+  l2[v] += 1.0;
+  std::vector<int> params{u, v};
+  for (int c : add_midpoint(model, {l0, l1, l2})) params.push_back(c);
+  model.add_deviation(difference(l0, l2), 0.0, balance);
+  model.add_deviation(difference(l1, l2), 0.0, balance);
+  return params;
+}
+
+// Blocks [0, block_limit) only, so that a failure can be traced to a block.
+BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
+  BuiltModel built;
+  Model& model = built.model;
+  double smallest_weight = 1.0, total_goal = 0.0;
+  for (const IntervalSegment& seg : problem.segments) {
+    const double lower = seg.min_count;
+    const double weight = 1.0 / std::max(seg.goal, 1.0);
+    const int n = model.add_integer(lower);
+    add_goal_deviation(model, n, seg.goal, weight);
+    built.count_columns.push_back(n);
+    smallest_weight = std::min(smallest_weight, weight);
+    total_goal += std::max(seg.goal, lower);
+  }
+  // Far below one unit of the goal deviation, so it only breaks ties.
+  const double balance = 0.01 * smallest_weight / (1.0 + total_goal);
+
+  for (size_t b = 0; b < std::min(block_limit, problem.blocks.size()); ++b) {
+    const BlockShape& block = problem.blocks[b];
+    std::vector<LinearExpr> sides;
+    for (const std::vector<int>& segs : block.side_segments) {
+      LinearExpr side;
+      for (int s : segs) side[built.count_columns[s]] += 1.0;
+      sides.push_back(side);
+    }
+    std::vector<int> params;
+    switch (block.kind) {
+      case BlockTemplate::Submap: {
+        const std::vector<int> dirs = submap_directions(block, b);
+        LinearExpr along[4];
+        for (size_t i = 0; i < sides.size(); ++i) add_to(along[dirs[i]], sides[i], 1.0);
+        model.add_equation(difference(along[0], along[2]), 0.0);
+        model.add_equation(difference(along[1], along[3]), 0.0);
+        break;
+      }
+      case BlockTemplate::Midpoint: params = add_midpoint(model, sides); break;
+      case BlockTemplate::TwoSided: params = add_two_sided(model, sides[0], sides[1], balance); break;
+      case BlockTemplate::OneSided: {
+        const int u = model.add_integer(1.0);
+        const int v = model.add_integer(1.0);
+        LinearExpr rest0 = sides[0], rest1 = column(u);
+        rest0[u] -= 1.0;
+        rest0[v] -= 1.0;
+        rest1[v] += 1.0;
+        params = {u, v};
+        for (int p : add_two_sided(model, rest0, rest1, balance)) params.push_back(p);
+        model.add_deviation(difference(column(u), column(v)), 0.0, balance);
+        model.add_deviation(difference(rest0, rest1), 0.0, balance);
+        break;
+      }
+      case BlockTemplate::Disc: {
+        const int a = model.add_integer(1.0);
+        const int bb = model.add_integer(1.0);
+        LinearExpr row = sides[0];
+        row[a] -= 2.0;
+        row[bb] -= 2.0;
+        model.add_equation(row, 0.0);
+        model.add_deviation(difference(column(a), column(bb)), 0.0, balance);
+        params = {a, bb};
+        break;
+      }
+    }
+    built.param_columns.push_back(params);
+  }
+  return built;
+}
+
+long to_int(double value) {
+  return std::lround(value);
+}
+
+// Every block's equations, recomputed from the answer alone.
+std::string first_violation(const IntervalProblem& problem, const IntervalAssignment& a) {
+  if (a.counts.size() != problem.segments.size()) return "one count per segment";
+  for (size_t s = 0; s < a.counts.size(); ++s) {
+    const int lower = problem.segments[s].min_count;
+    if (a.counts[s] < lower)
+      return "segment " + std::to_string(s) + " has " + std::to_string(a.counts[s]) + " < " + std::to_string(lower);
+  }
+  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+    const BlockShape& block = problem.blocks[b];
+    const std::string name = "block " + std::to_string(b);
+    std::vector<long> n;
+    for (const std::vector<int>& segs : block.side_segments) {
+      long total = 0;
+      for (int s : segs) total += a.counts[s];
+      n.push_back(total);
+    }
+    const std::vector<int>& p = a.params[b];
+    for (int value : p)
+      if (value < 1) return name + " has a template parameter < 1";
+    auto midpoint_holds = [](const std::vector<long>& l, const int* c) {
+      const size_t m = l.size();
+      for (size_t i = 0; i < m; ++i)
+        if (l[i] != c[(i + m - 1) % m] + c[(i + 1) % m]) return false;
+      return true;
+    };
+    bool holds = true;
+    switch (block.kind) {
+      case BlockTemplate::Submap: {
+        const std::vector<int> dirs = submap_directions(block, b);
+        long along[4] = {0, 0, 0, 0};
+        for (size_t i = 0; i < n.size(); ++i) along[dirs[i]] += n[i];
+        holds = p.empty() && along[0] == along[2] && along[1] == along[3];
+        break;
+      }
+      case BlockTemplate::Midpoint: holds = p.size() == n.size() && midpoint_holds(n, p.data()); break;
+      case BlockTemplate::TwoSided:
+        holds = p.size() == 5 && midpoint_holds({n[0] - p[0], n[1] - p[1], p[0] + p[1]}, p.data() + 2);
+        break;
+      case BlockTemplate::OneSided:
+        holds =
+            p.size() == 7 && midpoint_holds({n[0] - p[0] - p[1] - p[2], p[0] + p[1] - p[3], p[2] + p[3]}, p.data() + 4);
+        break;
+      case BlockTemplate::Disc: holds = p.size() == 2 && n[0] == 2L * p[0] + 2L * p[1]; break;
+    }
+    if (!holds) return name + " breaks its template's equations";
+  }
+  return {};
+}
+
+IntervalAssignment read_answer(const BuiltModel& built, const std::vector<double>& values) {
+  IntervalAssignment a;
+  for (int col : built.count_columns) a.counts.push_back(static_cast<int>(to_int(values[col])));
+  for (const std::vector<int>& cols : built.param_columns) {
+    std::vector<int> p;
+    for (int col : cols) p.push_back(static_cast<int>(to_int(values[col])));
+    a.params.push_back(p);
+  }
+  return a;
+}
+
+// Only on the error path: the shortest prefix of blocks that has no answer
+// ends with the block to blame (feasibility only shrinks as blocks are added).
+size_t first_impossible_block(const IntervalProblem& problem) {
+  size_t feasible = 0, infeasible = problem.blocks.size();
+  while (infeasible - feasible > 1) {
+    const size_t mid = (feasible + infeasible) / 2;
+    if (build(problem, mid).model.solve().infeasible)
+      infeasible = mid;
+    else
+      feasible = mid;
+  }
+  return infeasible - 1;
+}
+
+}  // namespace
+
+IntervalAssignment assign_intervals(const IntervalProblem& problem) {
+  validate(problem);
+  for (size_t b = 0; b < problem.blocks.size(); ++b)
+    if (problem.blocks[b].kind == BlockTemplate::Submap) submap_directions(problem.blocks[b], b);
+
+  if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
+  const BuiltModel built = build(problem, problem.blocks.size());
+  const Model::Outcome outcome = built.model.solve();
+  if (outcome.infeasible) {
+    const size_t b = first_impossible_block(problem);
+    throw std::runtime_error(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
+                             " sides): its template's conditions cannot hold together with those of the blocks "
+                             "before it, whatever the goals");
+  }
+  IntervalAssignment answer = read_answer(built, outcome.values);
+  if (!outcome.proven_optimal)
+    answer.notes.push_back(
+        "interval assignment: CBC stopped at its time limit; the counts are the best found, "
+        "not proven to deviate least from the goals");
+  const std::string violation = first_violation(problem, answer);
+  if (!violation.empty()) throw SelfCheckError("interval assignment", violation);
+  return answer;
+}
+
+}  // namespace mm

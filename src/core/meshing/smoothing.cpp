@@ -1,0 +1,547 @@
+#include "meshing/smoothing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace mm {
+namespace {
+
+// A node whose move is below this fraction of its mean edge length does not
+// wake its neighbours: the sweeps stop once nothing moves noticeably.
+constexpr double kStillFraction = 2e-2;
+// Boundary nodes keep this fraction of their parameter interval away from
+// its ends, so they never reach a neighbour.
+constexpr double kIntervalMargin = 1e-2;
+constexpr int kUntanglePasses = 200;
+constexpr int kUntangleStall = 3;  // passes without fewer inverted quads before reaching further
+constexpr int kUntangleRings = 8;
+constexpr int kRelaxSweeps = 50;
+// Quads at least this good are left alone: moving their nodes costs time
+// and cannot help the worst element.
+constexpr double kGoodEnough = 0.9;
+constexpr int kWorstPasses = 5;
+// Quads within this much of the minimum scaled Jacobian count as the worst.
+constexpr double kWorstBand = 0.1;
+// At most this many of the worst quads get the direct search per pass, so a
+// large mesh with a wide band of poor quads stays cheap.
+constexpr std::size_t kWorstQuads = 256;
+constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
+
+// Signed quality of a quad at its worst corner: the scaled Jacobian, or the
+// unnormalised corner area (cross product) when untangling.
+template <bool kScaled>
+double quad_measure(const Vec2 (&v)[4]) {
+  const Vec2 e[4] = {v[1] - v[0], v[2] - v[1], v[3] - v[2], v[0] - v[3]};
+  double worst = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    // Corner i: from edge e[i] (to the next corner) to -e[i - 1] (to the previous one).
+    const Vec2 next = e[i], prev = -e[(i + 3) % 4];
+    double value = cross(next, prev);
+    if (kScaled) {
+      const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
+      value = lengths > 0.0 ? value / lengths : -1.0;  // a collapsed side is as bad as it gets
+    }
+    worst = std::min(worst, value);
+  }
+  return worst;
+}
+
+// The quality around one node: the least and the mean of its quads' values.
+struct LocalQuality {
+  double min = 0.0;
+  double mean = 0.0;
+};
+
+// Accepts a move only if the worst quad around the node is no worse and
+// either the worst or the mean got better.
+bool better(const LocalQuality& candidate, const LocalQuality& current) {
+  return candidate.min >= current.min && (candidate.min > current.min || candidate.mean > current.mean);
+}
+
+class Smoother {
+ public:
+  Smoother(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options)
+      : face_(face), mesh_(mesh), options_(options) {
+    validate();
+    build_adjacency();
+    find_movable_nodes();
+    quad_sj_.resize(mesh_.quads.size());
+    for (std::size_t q = 0; q < mesh_.quads.size(); ++q) quad_sj_[q] = quad_value<true>(static_cast<int>(q), -1, {});
+  }
+
+  SmoothingResult run() {
+    SmoothingResult result;
+    if (mesh_.quads.empty()) return result;
+    result.min_scaled_jacobian_before = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    result.inverted_before = count_inverted();
+    if (result.inverted_before > 0) result.sweeps += untangle();
+    result.sweeps += laplacian_sweeps();
+    improve_worst();
+    result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    result.inverted_after = count_inverted();
+    return result;
+  }
+
+ private:
+  void validate() const {
+    if (!mesh_.midside.empty())
+      throw std::invalid_argument("smooth_mesh: only order-1 meshes are smoothed; add mid-side nodes afterwards");
+    const int nodes = static_cast<int>(mesh_.nodes.size());
+    if (static_cast<int>(mesh_.places.size()) != nodes)
+      throw std::invalid_argument("smooth_mesh: " + std::to_string(mesh_.places.size()) + " node places for " +
+                                  std::to_string(nodes) + " nodes");
+    for (std::size_t q = 0; q < mesh_.quads.size(); ++q)
+      for (int n : mesh_.quads[q])
+        if (n < 0 || n >= nodes)
+          throw std::invalid_argument("smooth_mesh: quad " + std::to_string(q) + " refers to node " +
+                                      std::to_string(n) + " of " + std::to_string(nodes));
+    for (int n = 0; n < nodes; ++n) {
+      const NodePlace& place = mesh_.places[n];
+      if (place.loop < 0) continue;
+      if (place.loop >= static_cast<int>(face_.loops.size()) || place.edge < 0 ||
+          place.edge >= static_cast<int>(face_.loops[place.loop].edges.size()))
+        throw std::invalid_argument("smooth_mesh: node " + std::to_string(n) + " lies on loop " +
+                                    std::to_string(place.loop) + " edge " + std::to_string(place.edge) +
+                                    ", which the face does not have");
+    }
+  }
+
+  // Node -> (quad, corner) pairs in flat arrays.
+  void build_adjacency() {
+    const std::size_t nodes = mesh_.nodes.size();
+    offsets_.assign(nodes + 1, 0);
+    for (const auto& quad : mesh_.quads)
+      for (int n : quad) ++offsets_[n + 1];
+    for (std::size_t n = 0; n < nodes; ++n) offsets_[n + 1] += offsets_[n];
+    corners_.resize(offsets_[nodes]);
+    std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+    for (std::size_t q = 0; q < mesh_.quads.size(); ++q)
+      for (int i = 0; i < 4; ++i) corners_[fill[mesh_.quads[q][i]]++] = static_cast<int>(q) * 4 + i;
+  }
+
+  // The side from -> to is on the mesh boundary when no quad runs it to -> from.
+  bool boundary_side(int from, int to) const {
+    for (int k = offsets_[to]; k < offsets_[to + 1]; ++k) {
+      const auto& quad = mesh_.quads[corners_[k] / 4];
+      if (quad[(corners_[k] % 4 + 1) % 4] == from) return false;
+    }
+    return true;
+  }
+
+  // Interior nodes move freely; boundary nodes slide between their two
+  // boundary neighbours (along the loop: quads are counter-clockwise with the
+  // material on the left, so a quad's boundary side runs with the loop).
+  void find_movable_nodes() {
+    const int nodes = static_cast<int>(mesh_.nodes.size());
+    movable_.assign(nodes, 0);
+    behind_.assign(nodes, -1);
+    ahead_.assign(nodes, -1);
+    for (int n = 0; n < nodes; ++n) {
+      const NodePlace& place = mesh_.places[n];
+      if (offsets_[n] == offsets_[n + 1] || place.face_corner) continue;
+      int behind_count = 0, ahead_count = 0;
+      for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+        const auto& quad = mesh_.quads[corners_[k] / 4];
+        const int i = corners_[k] % 4, next = quad[(i + 1) % 4], prev = quad[(i + 3) % 4];
+        if (boundary_side(n, next)) ahead_[n] = next, ++ahead_count;
+        if (boundary_side(prev, n)) behind_[n] = prev, ++behind_count;
+      }
+      if (place.loop < 0) {
+        if (ahead_count > 0)
+          throw std::invalid_argument("smooth_mesh: node " + std::to_string(n) +
+                                      " is marked interior but lies on the mesh boundary");
+        movable_[n] = 1;
+        continue;
+      }
+      if (ahead_count == 0)
+        throw std::invalid_argument("smooth_mesh: node " + std::to_string(n) + " is marked on loop " +
+                                    std::to_string(place.loop) + " but lies inside the mesh");
+      // A node where the boundary touches itself stays put: sliding it has no single interval.
+      if (ahead_count != 1 || behind_count != 1) continue;
+      if (mesh_.places[ahead_[n]].loop != place.loop || mesh_.places[behind_[n]].loop != place.loop)
+        throw std::invalid_argument("smooth_mesh: boundary node " + std::to_string(n) +
+                                    " has a boundary neighbour on another loop");
+      movable_[n] = options_.move_boundary ? 1 : 0;
+    }
+  }
+
+  // The quad's value with node `moved` put at p (moved = -1: as it is).
+  template <bool kScaled>
+  double quad_value(int q, int moved, Vec2 p) const {
+    const auto& quad = mesh_.quads[q];
+    Vec2 v[4];
+    for (int i = 0; i < 4; ++i) v[i] = quad[i] == moved ? p : mesh_.nodes[quad[i]];
+    return quad_measure<kScaled>(v);
+  }
+
+  template <bool kScaled>
+  LocalQuality local_quality(int n, Vec2 p) const {
+    LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const double value = quad_value<kScaled>(corners_[k] / 4, n, p);
+      local.min = std::min(local.min, value);
+      local.mean += value;
+    }
+    local.mean /= offsets_[n + 1] - offsets_[n];
+    return local;
+  }
+
+  LocalQuality cached_quality(int n) const {
+    LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      local.min = std::min(local.min, quad_sj_[corners_[k] / 4]);
+      local.mean += quad_sj_[corners_[k] / 4];
+    }
+    local.mean /= offsets_[n + 1] - offsets_[n];
+    return local;
+  }
+
+  int count_inverted() const {
+    return static_cast<int>(std::count_if(quad_sj_.begin(), quad_sj_.end(), [](double sj) { return sj <= 0.0; }));
+  }
+
+  double mean_squared_side(int n) const {
+    double sum = 0.0;
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const auto& quad = mesh_.quads[corners_[k] / 4];
+      const Vec2 side = mesh_.nodes[quad[(corners_[k] % 4 + 1) % 4]] - mesh_.nodes[n];
+      sum += dot(side, side);
+    }
+    return sum / (offsets_[n + 1] - offsets_[n]);
+  }
+
+  // Two smoothing targets: the mean of the points that would make each quad a
+  // parallelogram (keeps graded and regular grids as they are), and the mean
+  // of the side neighbours (plain Laplacian, better at irregular nodes).
+  void targets(int n, Vec2& parallelogram, Vec2& centroid) const {
+    parallelogram = centroid = Vec2{};
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const auto& quad = mesh_.quads[corners_[k] / 4];
+      const int i = corners_[k] % 4;
+      const Vec2 next = mesh_.nodes[quad[(i + 1) % 4]], prev = mesh_.nodes[quad[(i + 3) % 4]];
+      parallelogram = parallelogram + (next + prev - mesh_.nodes[quad[(i + 2) % 4]]);
+      centroid = centroid + 0.5 * (next + prev);
+    }
+    const double count = offsets_[n + 1] - offsets_[n];
+    parallelogram = parallelogram / count;
+    centroid = centroid / count;
+  }
+
+  const BoundaryEdge& edge_of(int n) const {
+    const NodePlace& place = mesh_.places[n];
+    return face_.loops[place.loop].edges[place.edge];
+  }
+
+  // The parameters a boundary node may slide between: its boundary
+  // neighbours' when they lie on the same edge and on the right side, else
+  // the edge's own ends (the neighbour is a vertex, or across a closed
+  // curve's seam).
+  void slide_interval(int n, double& behind, double& ahead) const {
+    const NodePlace& place = mesh_.places[n];
+    const BoundaryEdge& edge = edge_of(n);
+    const double direction = edge.t_end >= edge.t_start ? 1.0 : -1.0;
+    behind = edge.t_start;
+    ahead = edge.t_end;
+    const NodePlace& back = mesh_.places[behind_[n]];
+    const NodePlace& front = mesh_.places[ahead_[n]];
+    if (back.edge == place.edge && (place.t - back.t) * direction > 0.0) behind = back.t;
+    if (front.edge == place.edge && (front.t - place.t) * direction > 0.0) ahead = front.t;
+  }
+
+  double clamp_to_interval(double t, double behind, double ahead) const {
+    const double s = std::clamp((t - behind) / (ahead - behind), kIntervalMargin, 1.0 - kIntervalMargin);
+    return behind + s * (ahead - behind);
+  }
+
+  // The parameter in the interval whose curve point is nearest the target:
+  // Newton on (P(t) - target) . P'(t) from the current parameter.
+  double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 target, double behind, double ahead) const {
+    for (int iteration = 0; iteration < 6; ++iteration) {
+      const CurvePoint cp = edge_point(edge, t);
+      const Vec2 offset = cp.p - target;
+      const double slope = dot(offset, cp.d1), speed2 = dot(cp.d1, cp.d1);
+      double curvature = speed2 + dot(offset, cp.d2);
+      if (curvature <= 0.0) curvature = speed2;  // away from a minimum: a Gauss-Newton step
+      if (curvature <= 0.0) break;
+      const double next = clamp_to_interval(t - slope / curvature, behind, ahead);
+      if (next == t) break;
+      t = next;
+    }
+    return t;
+  }
+
+  void commit(int n, Vec2 p, double t) {
+    mesh_.nodes[n] = p;
+    if (mesh_.places[n].loop >= 0) mesh_.places[n].t = t;
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
+      quad_sj_[corners_[k] / 4] = quad_value<true>(corners_[k] / 4, -1, {});
+  }
+
+  void wake_neighbours(int n) {
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
+      for (int m : mesh_.quads[corners_[k] / 4])
+        if (movable_[m]) active_[m] = 1;
+  }
+
+  // One Laplacian step of one node; true if it moved noticeably.
+  bool smooth_node(int n) {
+    const LocalQuality current = cached_quality(n);
+    if (current.min >= kGoodEnough) return false;
+    const Vec2 x = mesh_.nodes[n];
+    const double still2 = kStillFraction * kStillFraction * mean_squared_side(n);
+    Vec2 parallelogram, centroid;
+    targets(n, parallelogram, centroid);
+    if (mesh_.places[n].loop < 0) {
+      for (Vec2 target : {parallelogram, centroid}) {
+        const Vec2 step = target - x;
+        if (dot(step, step) < still2) continue;
+        for (double fraction : kStepFractions) {
+          const Vec2 p = x + fraction * step;
+          if (!better(local_quality<true>(n, p), current)) continue;
+          commit(n, p, 0.0);
+          return fraction * fraction * dot(step, step) >= still2;
+        }
+      }
+      return false;
+    }
+    const BoundaryEdge& edge = edge_of(n);
+    const double t = mesh_.places[n].t;
+    double behind, ahead;
+    slide_interval(n, behind, ahead);
+    if (behind == ahead) return false;
+    // The third target spaces the node evenly in parameter between its neighbours.
+    const double candidates[] = {nearest_parameter(edge, t, parallelogram, behind, ahead),
+                                 nearest_parameter(edge, t, centroid, behind, ahead), 0.5 * (behind + ahead)};
+    for (double target : candidates) {
+      for (double fraction : kStepFractions) {
+        const double tc = t + fraction * (target - t);
+        const Vec2 p = edge_point(edge, tc).p;
+        const Vec2 step = p - x;
+        if (dot(step, step) < still2) break;
+        if (!better(local_quality<true>(n, p), current)) continue;
+        commit(n, p, tc);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  int laplacian_sweeps() {
+    active_ = movable_;
+    int sweeps = 0;
+    bool any_active = true;
+    while (any_active && sweeps < options_.max_sweeps) {
+      ++sweeps;
+      any_active = false;
+      // Gauss-Seidel: a node woken further on in this sweep is handled in it.
+      for (std::size_t n = 0; n < active_.size(); ++n) {
+        if (!active_[n]) continue;
+        active_[n] = 0;
+        if (smooth_node(static_cast<int>(n))) wake_neighbours(static_cast<int>(n));
+      }
+      any_active = std::find(active_.begin(), active_.end(), 1) != active_.end();
+    }
+    return sweeps;
+  }
+
+  // Direct search for the position (or parameter) that best improves the
+  // quality around the node: the Laplacian targets first, then compass
+  // steps that halve when none helps. True if the node moved.
+  template <bool kScaled>
+  bool optimise_node(int n) {
+    const Vec2 x0 = mesh_.nodes[n];
+    const bool on_boundary = mesh_.places[n].loop >= 0;
+    const double t0 = on_boundary ? mesh_.places[n].t : 0.0;
+    double behind = 0.0, ahead = 0.0;
+    if (on_boundary) {
+      slide_interval(n, behind, ahead);
+      if (behind == ahead) return false;
+    }
+    Vec2 best_p = x0;
+    double best_t = t0;
+    LocalQuality best = local_quality<kScaled>(n, x0);
+    const auto consider = [&](Vec2 p, double t) {
+      const LocalQuality q = local_quality<kScaled>(n, p);
+      if (!better(q, best)) return false;
+      best = q, best_p = p, best_t = t;
+      return true;
+    };
+    Vec2 parallelogram, centroid;
+    targets(n, parallelogram, centroid);
+    const BoundaryEdge* edge = on_boundary ? &edge_of(n) : nullptr;
+    for (Vec2 target : {parallelogram, centroid}) {
+      if (on_boundary) {
+        const double t = nearest_parameter(*edge, t0, target, behind, ahead);
+        consider(edge_point(*edge, t).p, t);
+      } else {
+        consider(target, 0.0);
+      }
+    }
+    double step = on_boundary ? 0.25 * (ahead - behind) : 0.5 * std::sqrt(mean_squared_side(n));
+    static const Vec2 kCompass[] = {
+        {1, 0},  {0.7071067811865476, 0.7071067811865476},   {0, 1},  {-0.7071067811865476, 0.7071067811865476},
+        {-1, 0}, {-0.7071067811865476, -0.7071067811865476}, {0, -1}, {0.7071067811865476, -0.7071067811865476}};
+    for (int iteration = 0, halvings = 0; iteration < 40 && halvings < 10; ++iteration) {
+      bool improved = false;
+      if (on_boundary) {
+        for (double sign : {1.0, -1.0}) {
+          const double t = best_t + sign * step;
+          if (clamp_to_interval(t, behind, ahead) != t) continue;
+          improved |= consider(edge_point(*edge, t).p, t);
+        }
+      } else {
+        const Vec2 from = best_p;
+        for (Vec2 direction : kCompass) improved |= consider(from + step * direction, 0.0);
+      }
+      if (!improved) step *= 0.5, ++halvings;
+    }
+    if (best_p.x == x0.x && best_p.y == x0.y) return false;
+    commit(n, best_p, best_t);
+    return true;
+  }
+
+  // The nodes of the given quads and `rings` rings of quads around them, in index order.
+  void region(const std::vector<int>& quads, int rings, std::vector<int>& nodes) {
+    picked_.resize(mesh_.nodes.size(), 0);
+    nodes.clear();
+    for (int q : quads)
+      for (int n : mesh_.quads[q])
+        if (!picked_[n]) picked_[n] = 1, nodes.push_back(n);
+    for (int ring = 0, from = 0; ring < rings; ++ring) {
+      const int to = static_cast<int>(nodes.size());
+      for (int k = from; k < to; ++k)
+        for (int c = offsets_[nodes[k]]; c < offsets_[nodes[k] + 1]; ++c)
+          for (int n : mesh_.quads[corners_[c] / 4])
+            if (!picked_[n]) picked_[n] = 1, nodes.push_back(n);
+      from = to;
+    }
+    for (int n : nodes) picked_[n] = 0;
+    std::sort(nodes.begin(), nodes.end());
+  }
+
+  // Plain Laplacian relaxation of the region's interior nodes, with no
+  // quality check: it unfolds what node-by-node search cannot reach. Kept
+  // only if fewer quads around the region end up inverted.
+  void relax_region(const std::vector<int>& nodes) {
+    std::vector<int> quads;
+    for (int n : nodes)
+      for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) quads.push_back(corners_[k] / 4);
+    std::sort(quads.begin(), quads.end());
+    quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
+    const auto count = [&] {
+      return std::count_if(quads.begin(), quads.end(), [&](int q) { return quad_sj_[q] <= 0.0; });
+    };
+    const auto before = count();
+    std::vector<Vec2> saved;
+    for (int n : nodes) saved.push_back(mesh_.nodes[n]);
+    for (int sweep = 0; sweep < kRelaxSweeps; ++sweep)
+      for (int n : nodes)
+        if (movable_[n] && mesh_.places[n].loop < 0) {
+          Vec2 parallelogram, centroid;
+          targets(n, parallelogram, centroid);
+          mesh_.nodes[n] = centroid;
+        }
+    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+    if (count() < before) return;
+    for (std::size_t k = 0; k < nodes.size(); ++k) mesh_.nodes[nodes[k]] = saved[k];
+    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+  }
+
+  // Lifts the least signed corner area around the nodes of inverted quads
+  // until none is inverted or nothing moves. A fold larger than one node's
+  // reach needs room from further away: while the count of inverted quads
+  // stalls, the worked nodes grow by rings, and at the widest a plain
+  // Laplacian relaxation of the region is tried once. Returns the passes.
+  int untangle() {
+    std::vector<int> inverted;
+    for (std::size_t q = 0; q < quad_sj_.size(); ++q)
+      if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
+    std::vector<char> listed(mesh_.quads.size(), 0);
+    std::vector<int> nodes;
+    std::size_t fewest = inverted.size();
+    int passes = 0, rings = 0, stalled = 0;
+    bool relaxed = false;
+    while (!inverted.empty() && passes < kUntanglePasses) {
+      ++passes;
+      region(inverted, rings, nodes);
+      bool progress = false;
+      for (int n : nodes)
+        if (movable_[n]) progress |= optimise_node<false>(n);
+      // Only quads around the nodes just handled can have changed.
+      std::vector<int> still;
+      const auto keep = [&](int q) {
+        if (quad_sj_[q] <= 0.0 && !listed[q]) listed[q] = 1, still.push_back(q);
+      };
+      for (int q : inverted) keep(q);
+      for (int n : nodes)
+        for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) keep(corners_[k] / 4);
+      for (int q : still) listed[q] = 0;
+      inverted.swap(still);
+      if (inverted.size() < fewest) {
+        fewest = inverted.size(), stalled = 0;
+      } else if (++stalled >= kUntangleStall || !progress) {
+        if (rings < kUntangleRings) {
+          ++rings, stalled = 0;
+        } else if (!relaxed) {
+          relaxed = true;
+          region(inverted, 2 * kUntangleRings, nodes);
+          relax_region(nodes);
+          inverted.clear();
+          for (std::size_t q = 0; q < quad_sj_.size(); ++q)
+            if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
+          fewest = inverted.size(), rings = 0, stalled = 0;
+        } else {
+          break;
+        }
+      }
+    }
+    return passes;
+  }
+
+  // Direct search on the nodes of the worst quads: the Laplacian steps
+  // spread quality, this lifts the minimum itself.
+  void improve_worst() {
+    std::vector<int> worst_quads, nodes;
+    for (int pass = 0; pass < kWorstPasses; ++pass) {
+      const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+      worst_quads.clear();
+      for (std::size_t q = 0; q < quad_sj_.size(); ++q)
+        if (quad_sj_[q] < worst + kWorstBand) worst_quads.push_back(static_cast<int>(q));
+      if (worst_quads.size() > kWorstQuads)
+        std::nth_element(worst_quads.begin(), worst_quads.begin() + kWorstQuads, worst_quads.end(),
+                         [&](int a, int b) { return quad_sj_[a] < quad_sj_[b]; });
+      nodes.clear();
+      for (std::size_t k = 0; k < std::min(worst_quads.size(), kWorstQuads); ++k)
+        for (int n : mesh_.quads[worst_quads[k]])
+          if (movable_[n]) nodes.push_back(n);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      bool moved = false;
+      for (int n : nodes) moved |= optimise_node<true>(n);
+      if (!moved) break;
+    }
+  }
+
+  const FaceModel& face_;
+  QuadMesh& mesh_;
+  const SmoothingOptions& options_;
+  std::vector<int> offsets_;  // node n's quads are corners_[offsets_[n] .. offsets_[n + 1])
+  std::vector<int> corners_;  // quad * 4 + corner index
+  std::vector<char> movable_;
+  std::vector<char> active_;
+  std::vector<int> behind_;  // boundary neighbours against and along the loop
+  std::vector<int> ahead_;
+  std::vector<double> quad_sj_;
+  std::vector<char> picked_;  // scratch flags of region()
+};
+
+}  // namespace
+
+SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options) {
+  return Smoother(face, mesh, options).run();
+}
+
+}  // namespace mm
