@@ -48,6 +48,11 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
       boundary_length += distance(a, b);
     }
   }
+  for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
+    Vec2 centre;
+    for (int n : mesh.quads[e]) centre = centre + 0.25 * mesh.nodes[n];
+    if (!probe.inside(centre)) problem("element " + std::to_string(e) + " has its centre outside the face at " + where(centre));
+  }
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     if (!on_boundary[n]) continue;
     const double off = probe.distance_to_boundary(mesh.nodes[n]);

@@ -19,10 +19,13 @@ namespace {
 // circle gets at least 8 intervals).
 constexpr double kMaxTurnPerInterval = kPi / 4.0;
 
-// One piece of the outlines that gets one interval count: a whole split, or a
-// piece of a boundary edge used by exactly one block.
+// One piece of the outlines that gets one interval count: a run of a split
+// between two of its polyline points (a split is cut where it crosses the
+// medial axis, and blocks on either side share those runs), or a piece of a
+// boundary edge used by exactly one block.
 struct Segment {
   int split = -1;
+  std::vector<Vec2> line;  // split runs: the polyline, in the segment's direction
   int loop = -1;
   int edge = -1;
   double t_from = 0.0;
@@ -143,18 +146,33 @@ std::string at(Vec2 p) {
 class BlockMesher {
  public:
   BlockMesher(const FaceModel& face, const Decomposition& d, const MeshingOptions& options)
-      : face_(face), d_(d), options_(options), tolerance_(1e-6 * face.size) {}
+      // Split ends meet the boundary to the decomposition's accuracy, which
+      // on faces read with loose edge tolerances is looser than ours.
+      : face_(face), d_(d), options_(options), tolerance_(std::max(1e-5 * face.size, 10.0 * face.tolerance)) {}
 
   BlockMesh run() {
     BlockMesh result;
     collect_segments();
     join_segment_ends();
     const auto t0 = std::chrono::steady_clock::now();
-    const IntervalAssignment intervals = assign_intervals(interval_problem());
+    IntervalAssignment intervals;
+    try {
+      intervals = assign_intervals(interval_problem());
+    } catch (const SelfCheckError&) {
+      throw;
+    } catch (const std::exception& e) {
+      fail(std::string("the blocks cannot be given interval counts: ") + e.what());
+    }
     const auto t1 = std::chrono::steady_clock::now();
-    place_segment_nodes(intervals.counts);
+    std::vector<int> counts = intervals.counts;
+    spread_along_boundary_runs(counts);
+    place_segment_nodes(counts);
     for (std::size_t b = 0; b < d_.blocks.size(); ++b) {
-      fill_block(shapes_[b], intervals.params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_);
+      try {
+        fill_block(shapes_[b], intervals.params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_);
+      } catch (const std::runtime_error& e) {
+        fail(std::string("a block cannot be filled: ") + e.what());
+      }
     }
     const auto t2 = std::chrono::steady_clock::now();
     if (options_.smooth) {
@@ -170,7 +188,7 @@ class BlockMesher {
                             {"placement", seconds(t1, t2)},
                             {"smoothing", seconds(t2, t3)},
                             {"mesh_check", seconds(t3, t4)}};
-    result.segment_counts = intervals.counts;
+    result.segment_counts = counts;
     result.relaxed = intervals.relaxed;
     result.notes = intervals.notes;
     result.mesh = std::move(mesh_);
@@ -183,14 +201,14 @@ class BlockMesher {
   const BoundaryEdge& edge_of(const Segment& s) const { return face_.loops[s.loop].edges[s.edge]; }
 
   Vec2 segment_end(const Segment& s, bool last) const {
-    if (s.split >= 0) return last ? d_.splits[s.split].polyline.back() : d_.splits[s.split].polyline.front();
+    if (s.split >= 0) return last ? s.line.back() : s.line.front();
     return edge_point(edge_of(s), last ? s.t_to : s.t_from).p;
   }
 
   // Segments and, per block, the pieces of its sides as segments used
   // forwards or backwards; the block shapes for interval assignment.
   void collect_segments() {
-    std::map<int, int> segment_of_split;
+    std::map<std::array<int, 3>, int> segment_of_run;
     for (std::size_t b = 0; b < d_.blocks.size(); ++b) {
       const Block& block = d_.blocks[b];
       BlockShape shape;
@@ -203,16 +221,22 @@ class BlockMesher {
         for (const OutlinePiece& piece : side.pieces) {
           PieceUse use;
           if (piece.split >= 0) {
-            auto found = segment_of_split.find(piece.split);
-            if (found == segment_of_split.end()) {
+            const std::vector<Vec2>& polyline = d_.splits[piece.split].polyline;
+            const int from = polyline_point(polyline, piece.points.front());
+            const int to = polyline_point(polyline, piece.points.back());
+            if (from == to) fail("a split piece of block " + std::to_string(b) + " has no length");
+            const std::array<int, 3> run{piece.split, std::min(from, to), std::max(from, to)};
+            auto found = segment_of_run.find(run);
+            if (found == segment_of_run.end()) {
               Segment s;
               s.split = piece.split;
-              s.length = cumulative_length(d_.splits[piece.split].polyline).back();
-              found = segment_of_split.emplace(piece.split, static_cast<int>(segments_.size())).first;
+              s.line.assign(polyline.begin() + run[1], polyline.begin() + run[2] + 1);
+              s.length = cumulative_length(s.line).back();
+              found = segment_of_run.emplace(run, static_cast<int>(segments_.size())).first;
               segments_.push_back(std::move(s));
             }
             use.segment = found->second;
-            use.reversed = piece.reversed;
+            use.reversed = from > to;
           } else {
             Segment s;
             s.loop = piece.loop;
@@ -234,6 +258,16 @@ class BlockMesher {
       uses_.push_back(std::move(sides));
       shapes_.push_back(std::move(shape));
     }
+  }
+
+  // The polyline point a split piece starts or ends at.
+  int polyline_point(const std::vector<Vec2>& polyline, Vec2 p) const {
+    int best = 0;
+    for (std::size_t i = 1; i < polyline.size(); ++i) {
+      if (distance(polyline[i], p) < distance(polyline[best], p)) best = static_cast<int>(i);
+    }
+    if (distance(polyline[best], p) > tolerance_) fail("a split piece ends off its split's points at " + at(p));
+    return best;
   }
 
   BlockTemplate template_of(const Block& block, int index) const {
@@ -340,13 +374,59 @@ class BlockMesher {
     return problem;
   }
 
+  // Interval assignment fixes what a side's pieces add up to; its linear
+  // objective may then load a whole side's change onto one piece. Pieces of
+  // boundary in a row on one side meet at no corner and no other block, so
+  // their sum is spread over them by length again (largest remainders,
+  // bounds kept).
+  void spread_along_boundary_runs(std::vector<int>& counts) const {
+    for (const auto& sides : uses_) {
+      for (const auto& side : sides) {
+        std::size_t begin = 0;
+        while (begin < side.size()) {
+          std::size_t end = begin;
+          while (end < side.size() && segments_[side[end].segment].split < 0) ++end;
+          if (end - begin > 1) spread(side, begin, end, counts);
+          begin = end + 1;
+        }
+      }
+    }
+  }
+
+  void spread(const std::vector<PieceUse>& side, std::size_t begin, std::size_t end, std::vector<int>& counts) const {
+    int spare = 0;
+    double length = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Segment& s = segments_[side[i].segment];
+      spare += counts[side[i].segment] - s.min_count;
+      length += s.length;
+      counts[side[i].segment] = s.min_count;
+    }
+    int total = spare;
+    for (std::size_t i = begin; i < end; ++i) total += counts[side[i].segment];
+    // One interval at a time to the piece furthest below its share by length.
+    for (; spare > 0; --spare) {
+      std::size_t neediest = begin;
+      double most_missing = -1e300;
+      for (std::size_t i = begin; i < end; ++i) {
+        const double share = length > 0.0 ? total * segments_[side[i].segment].length / length : 0.0;
+        const double missing = share - counts[side[i].segment];
+        if (missing > most_missing) {
+          most_missing = missing;
+          neediest = i;
+        }
+      }
+      ++counts[side[neediest].segment];
+    }
+  }
+
   void place_segment_nodes(const std::vector<int>& counts) {
     for (std::size_t i = 0; i < segments_.size(); ++i) {
       Segment& s = segments_[i];
       const int n = counts[i];
       s.nodes.assign(1, vertex_of_end_[2 * i]);
       if (s.split >= 0) {
-        const std::vector<Vec2>& line = d_.splits[s.split].polyline;
+        const std::vector<Vec2>& line = s.line;
         const std::vector<double> arc = cumulative_length(line);
         for (int k = 1; k < n; ++k) add_node(s, point_along_polyline(line, arc, arc.back() * k / n), NodePlace{});
       } else {
@@ -444,12 +524,27 @@ class BlockMesher {
         ++uses[{std::min(a, b), std::max(a, b)}];
       }
     }
+    // The outer sides are exactly the boundary's intervals, each once: with
+    // every element turning counter-clockwise, the elements then cover the
+    // face once (the mapping's degree is the boundary's winding number).
+    std::map<std::pair<int, int>, bool> boundary_intervals;
+    for (const Segment& s : segments_) {
+      if (s.split >= 0) continue;
+      for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
+        boundary_intervals[{std::min(s.nodes[k], s.nodes[k + 1]), std::max(s.nodes[k], s.nodes[k + 1])}] = false;
+      }
+    }
     double outer_chord_error = 0.0;
     for (const auto& [edge, count] : uses) {
       const Vec2 p = 0.5 * (mesh_.nodes[edge.first] + mesh_.nodes[edge.second]);
       if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
-      if (count == 1 && (mesh_.places[edge.first].loop < 0 || mesh_.places[edge.second].loop < 0))
-        fail("a hanging element side at " + at(p) + " (the blocks do not conform there)");
+      const auto interval = boundary_intervals.find(edge);
+      if ((count == 1) != (interval != boundary_intervals.end()))
+        fail("an element side at " + at(p) + (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
+      if (interval != boundary_intervals.end()) interval->second = true;
+    }
+    for (const auto& [edge, used] : boundary_intervals) {
+      if (!used) fail("no element lies along the boundary at " + at(mesh_.nodes[edge.first]));
     }
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
