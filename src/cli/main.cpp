@@ -249,10 +249,7 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
   if (o.json) {
     nlohmann::json report = mm::mesh_report_json(meshed.quality, mesh.order());
     report["face"] = face.name;
-    report["frame"] = {{"origin", face.frame.origin},
-                       {"x_dir", face.frame.x_dir},
-                       {"y_dir", face.frame.y_dir},
-                       {"normal", face.frame.normal}};
+    report["frame"] = mm::frame_json(face.frame);
     report["size"] = options.meshing.size;
     report["blocks"] = meshed.decomposition.blocks.size();
     report["singularities"] = meshed.decomposition.singularities.size();

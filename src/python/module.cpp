@@ -17,10 +17,6 @@ namespace py = pybind11;
 
 namespace {
 
-nlohmann::json frame_json(const mm::Frame& frame) {
-  return {{"origin", frame.origin}, {"x_dir", frame.x_dir}, {"y_dir", frame.y_dir}, {"normal", frame.normal}};
-}
-
 py::object to_python(const nlohmann::json& json) {
   return py::module_::import("json").attr("loads")(json.dump());
 }
@@ -28,7 +24,7 @@ py::object to_python(const nlohmann::json& json) {
 // The JSON report plus what a Python caller needs to draw or map back to 3-D.
 py::object face_dict(const mm::FaceModel& face) {
   nlohmann::json report = mm::face_report_json(face);
-  report["frame"] = frame_json(face.frame);
+  report["frame"] = mm::frame_json(face.frame);
   nlohmann::json loops = nlohmann::json::array();
   for (const mm::Loop& loop : face.loops) {
     nlohmann::json points = nlohmann::json::array();
@@ -75,7 +71,7 @@ py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
   report["notes"] = meshed.blocks.notes;
   result["report"] = to_python(report);
   nlohmann::json decomposition = mm::decomposition_report_json(face, meshed.decomposition);
-  decomposition["frame"] = frame_json(face.frame);
+  decomposition["frame"] = mm::frame_json(face.frame);
   result["decomposition"] = to_python(decomposition);
   return result;
 }
@@ -100,7 +96,7 @@ PYBIND11_MODULE(_medialmesh, m) {
       [](const std::string& brep, const std::string& name) {
         const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
         nlohmann::json report = mm::medial_report_json(mm::compute_medial_axis(face));
-        report["frame"] = frame_json(face.frame);
+        report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face",
@@ -120,7 +116,7 @@ PYBIND11_MODULE(_medialmesh, m) {
           groups = mm::merge_singularities(flow.singularities, {merge_factor.value_or(0.75), mesh_size.value_or(0.0)});
         nlohmann::json report = mm::singularity_report_json(face, flow, merge ? &groups : nullptr);
         report["medial_axis"] = mm::medial_report_json(axis);
-        report["frame"] = frame_json(face.frame);
+        report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face", py::arg("merge_factor") = py::none(),
@@ -141,7 +137,7 @@ PYBIND11_MODULE(_medialmesh, m) {
         options.merge = merge.has_value() || mesh_size.has_value();
         options.tolerance = {merge.value_or(0.75), mesh_size.value_or(0.0)};
         nlohmann::json report = mm::decomposition_report_json(face, mm::decompose(face, axis, flow, options));
-        report["frame"] = frame_json(face.frame);
+        report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face", py::arg("merge") = py::none(), py::arg("mesh_size") = py::none(),

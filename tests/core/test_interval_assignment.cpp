@@ -112,7 +112,6 @@ TEST(IntervalAssignment, SquareTakesExactGoalsAndRoundsOthers) {
   IntervalAssignment a = assign_intervals(exact);
   expect_valid(exact, a);
   EXPECT_EQ(a.counts, (std::vector<int>{5, 5, 5, 5}));
-  EXPECT_FALSE(a.relaxed);
 
   IntervalProblem up = submap({1, 1, 1, 1}, {4.6, 7.7, 4.6, 7.7});
   a = assign_intervals(up);

@@ -22,10 +22,9 @@ struct IntervalProblem {
 struct IntervalAssignment {
   std::vector<int> counts;               // per segment
   std::vector<std::vector<int>> params;  // per block, see block_shape.hpp
-  // Never set by assign_intervals: every block condition is a homogeneous
-  // linear equation, so scaling any answer up meets any lower bounds; only
-  // the goals give way, and they always may.
-  bool relaxed = false;
+  // Nothing is ever relaxed: every block condition is a homogeneous linear
+  // equation, so scaling any answer up meets any lower bounds; only the
+  // goals give way, and they always may.
   std::vector<std::string> notes;
 };
 

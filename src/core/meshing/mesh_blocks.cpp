@@ -193,7 +193,6 @@ class BlockMesher {
                             {"smoothing", seconds(t2, t3)},
                             {"mesh_check", seconds(t3, t4)}};
     result.segment_counts = counts;
-    result.relaxed = intervals.relaxed;
     result.notes = intervals.notes;
     result.mesh = std::move(mesh_);
     return result;

@@ -21,7 +21,6 @@ struct MeshingOptions {
 struct BlockMesh {
   QuadMesh mesh;
   std::vector<int> segment_counts;  // intervals per segment, for the report
-  bool relaxed = false;             // interval goals or bounds had to give way
   std::vector<std::string> notes;
   std::vector<std::pair<std::string, double>> stage_seconds;
 };

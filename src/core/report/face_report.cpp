@@ -51,4 +51,8 @@ std::string face_report_table(const FaceModel& face) {
   return out.str();
 }
 
+nlohmann::json frame_json(const Frame& frame) {
+  return {{"origin", frame.origin}, {"x_dir", frame.x_dir}, {"y_dir", frame.y_dir}, {"normal", frame.normal}};
+}
+
 }  // namespace mm
