@@ -14,9 +14,9 @@
 
 #include "occ/occ_reader.hpp"
 #include "occ/occ_split_io.hpp"
+#include "pipeline/pipeline.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
-#include "pipeline/pipeline.hpp"
 #include "report/medial_report.hpp"
 #include "report/mesh_files.hpp"
 #include "report/mesh_report.hpp"

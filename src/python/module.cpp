@@ -6,9 +6,9 @@
 #include <optional>
 
 #include "occ/occ_reader.hpp"
+#include "pipeline/pipeline.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
-#include "pipeline/pipeline.hpp"
 #include "report/medial_report.hpp"
 #include "report/mesh_report.hpp"
 #include "report/singularity_report.hpp"
@@ -149,8 +149,8 @@ PYBIND11_MODULE(_medialmesh, m) {
 
   m.def(
       "mesh",
-      [](const std::string& brep, double size, int order, std::optional<double> merge,
-         std::optional<double> merge_size, bool smooth, const std::string& name) {
+      [](const std::string& brep, double size, int order, std::optional<double> merge, std::optional<double> merge_size,
+         bool smooth, const std::string& name) {
         const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
         mm::PipelineOptions options;
         options.meshing.size = size;

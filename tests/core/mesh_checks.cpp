@@ -52,7 +52,8 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
   // outside the exact face by at most the largest sagitta of its chords.
   double sagitta = 0.0;
   for (const auto& [side, count] : sides) {
-    if (count == 1) sagitta = std::max(sagitta, probe.distance_to_boundary(0.5 * (mesh.nodes[side.first] + mesh.nodes[side.second])));
+    if (count == 1)
+      sagitta = std::max(sagitta, probe.distance_to_boundary(0.5 * (mesh.nodes[side.first] + mesh.nodes[side.second])));
   }
   for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
     Vec2 centre;
@@ -63,7 +64,8 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     if (!on_boundary[n]) continue;
     const double off = probe.distance_to_boundary(mesh.nodes[n]);
-    if (off > on_curve) problem("boundary node " + std::to_string(n) + " is " + std::to_string(off) + " off the boundary");
+    if (off > on_curve)
+      problem("boundary node " + std::to_string(n) + " is " + std::to_string(off) + " off the boundary");
     if (mesh.places[n].loop < 0) problem("boundary node " + std::to_string(n) + " is not marked as on a curve");
   }
   // The boundary sides' chords cut off at most (chord x sagitta) each; the

@@ -112,8 +112,8 @@ TEST(MeshCommand, WritesFilesReportAndPicture) {
                                ".inp --json --svg " + out + ".svg");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(r.out);
-  for (const char* key : {"quads", "triangles", "inverted", "min_scaled_jacobian", "mean_scaled_jacobian",
-                          "min_angle", "max_angle", "irregular_interior", "irregular_boundary", "seconds", "stages"})
+  for (const char* key : {"quads", "triangles", "inverted", "min_scaled_jacobian", "mean_scaled_jacobian", "min_angle",
+                          "max_angle", "irregular_interior", "irregular_boundary", "seconds", "stages"})
     EXPECT_TRUE(report.contains(key)) << key;
   EXPECT_GT(report["quads"].get<int>(), 50);
   EXPECT_EQ(report["inverted"].get<int>(), 0);

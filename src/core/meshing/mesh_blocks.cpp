@@ -276,23 +276,18 @@ class BlockMesher {
   BlockTemplate template_of(const Block& block, int index) const {
     if (block.kind == BlockKind::Submap) {
       if (block.singularity >= 0) {
-        throw SelfCheckError(face_.name, "mesh: block " + std::to_string(index) + " holds a k = " +
-                                             std::to_string(d_.singularities[block.singularity].k) +
+        throw SelfCheckError(face_.name, "mesh: block " + std::to_string(index) +
+                                             " holds a k = " + std::to_string(d_.singularities[block.singularity].k) +
                                              " singularity but is not a logically convex polygon");
       }
       return BlockTemplate::Submap;
     }
     switch (block.corners.size()) {
-      case 0:
-        return BlockTemplate::Disc;
-      case 1:
-        return BlockTemplate::OneSided;
-      case 2:
-        return BlockTemplate::TwoSided;
-      case 4:
-        return BlockTemplate::Submap;
-      default:
-        return BlockTemplate::Midpoint;
+      case 0: return BlockTemplate::Disc;
+      case 1: return BlockTemplate::OneSided;
+      case 2: return BlockTemplate::TwoSided;
+      case 4: return BlockTemplate::Submap;
+      default: return BlockTemplate::Midpoint;
     }
   }
 
@@ -333,8 +328,8 @@ class BlockMesher {
         const Vec2 p = segment_end(s, h % 2 == 1);
         if (placed[v]) {
           if (distance(mesh_.nodes[v], p) > tolerance_) {
-            fail("block outlines that should meet are " + std::to_string(distance(mesh_.nodes[v], p)) +
-                 " apart at " + at(p));
+            fail("block outlines that should meet are " + std::to_string(distance(mesh_.nodes[v], p)) + " apart at " +
+                 at(p));
           }
           continue;
         }
@@ -492,8 +487,8 @@ class BlockMesher {
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
-        const double t = middle_param(edge_of(s), current_param(s, static_cast<int>(k)),
-                                      current_param(s, static_cast<int>(k + 1)));
+        const double t =
+            middle_param(edge_of(s), current_param(s, static_cast<int>(k)), current_param(s, static_cast<int>(k + 1)));
         NodePlace place;
         place.loop = s.loop;
         place.edge = s.edge;
@@ -543,7 +538,8 @@ class BlockMesher {
       if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
       const auto interval = boundary_intervals.find(edge);
       if ((count == 1) != (interval != boundary_intervals.end()))
-        fail("an element side at " + at(p) + (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
+        fail("an element side at " + at(p) +
+             (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
       if (interval != boundary_intervals.end()) interval->second = true;
     }
     for (const auto& [edge, used] : boundary_intervals) {
@@ -554,8 +550,8 @@ class BlockMesher {
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
         const Vec2 a = mesh_.nodes[s.nodes[k]];
         const Vec2 b = mesh_.nodes[s.nodes[k + 1]];
-        const double t = middle_param(edge_of(s), current_param(s, static_cast<int>(k)),
-                                      current_param(s, static_cast<int>(k + 1)));
+        const double t =
+            middle_param(edge_of(s), current_param(s, static_cast<int>(k)), current_param(s, static_cast<int>(k + 1)));
         const Vec2 m = edge_point(edge_of(s), t).p;
         // The area between a chord and its arc is at most chord x sagitta.
         outer_chord_error += distance(a, b) * std::abs(cross(normalized(b - a), m - a));

@@ -16,8 +16,8 @@ const char* valence_colour(int valence) {
 }
 }  // namespace
 
-void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition,
-                    const QuadMesh& mesh, const QualityReport& quality) {
+void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition, const QuadMesh& mesh,
+                    const QualityReport& quality) {
   draw_face(canvas, face);
   const double width = canvas.pixels_per_unit() * face.size < 4000.0 ? 0.6 : 0.3;
   for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
@@ -27,10 +27,11 @@ void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decompositio
       if (mesh.order() == 2) outline.push_back(mesh.nodes[mesh.midside[e][i]]);
     }
     const int block = e < mesh.block_of_quad.size() ? mesh.block_of_quad[e] : 0;
-    canvas.region({outline}, std::string("fill:") + kBlockFills[block % 8] + ";stroke:#555;stroke-width:" +
-                                 std::to_string(width));
+    canvas.region({outline},
+                  std::string("fill:") + kBlockFills[block % 8] + ";stroke:#555;stroke-width:" + std::to_string(width));
   }
-  for (const Split& s : decomposition.splits) canvas.polyline(s.polyline, false, "fill:none;stroke:#000;stroke-width:2");
+  for (const Split& s : decomposition.splits)
+    canvas.polyline(s.polyline, false, "fill:none;stroke:#000;stroke-width:2");
   for (const Loop& loop : face.loops) {
     canvas.polyline(sample_loop(loop, 0.5 / canvas.pixels_per_unit()), true, "fill:none;stroke:#000;stroke-width:2");
   }

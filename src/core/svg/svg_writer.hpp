@@ -63,7 +63,7 @@ void draw_decomposition(SvgCanvas& canvas, const FaceModel& face, const MedialAx
 // The quad mesh over its blocks' shading, the splits drawn bold, and the
 // irregular nodes marked by valence (boundary nodes off their corner's nc in
 // orange), with a legend.
-void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition,
-                    const QuadMesh& mesh, const QualityReport& quality);
+void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition, const QuadMesh& mesh,
+                    const QualityReport& quality);
 
 }  // namespace mm
