@@ -36,6 +36,19 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
       ++sides[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
     }
   }
+  // Two nodes on one point: a solver sees a crack or a collapsed element.
+  // Sorted by x, only neighbours in x need comparing.
+  std::vector<int> by_x(mesh.nodes.size());
+  for (std::size_t n = 0; n < by_x.size(); ++n) by_x[n] = static_cast<int>(n);
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return mesh.nodes[a].x < mesh.nodes[b].x; });
+  const double same_point = 1e-7 * face.size;
+  for (std::size_t i = 0; i < by_x.size(); ++i) {
+    for (std::size_t j = i + 1; j < by_x.size() && mesh.nodes[by_x[j]].x - mesh.nodes[by_x[i]].x <= same_point; ++j) {
+      if (distance(mesh.nodes[by_x[i]], mesh.nodes[by_x[j]]) <= same_point)
+        problem("nodes " + std::to_string(by_x[i]) + " and " + std::to_string(by_x[j]) + " are both at " +
+                where(mesh.nodes[by_x[i]]));
+    }
+  }
   const BoundaryProbe probe(face);
   const double on_curve = 1e-7 * face.size;
   std::vector<bool> on_boundary(mesh.nodes.size(), false);

@@ -1542,7 +1542,29 @@ class Decomposer {
       lo = std::max(lo, hi);
       virtual_start = is_virtual;
     }
+    drop_slivers_at_ends(result, starts_at_virtual, it);
     return result;
+  }
+
+  // A split that ends a hair's breadth before a loop vertex (on a circle's
+  // seam, say) leaves a piece of next to no length between them: one
+  // interval there would put two nodes on one point. Such a piece goes, and
+  // its neighbour reaches the split's end instead.
+  void drop_slivers_at_ends(std::vector<OutlinePiece>& pieces, std::vector<bool>& starts_at_virtual,
+                            const Item& it) const {
+    const double sliver = 1e-6 * face_.size;
+    const auto length = [](const OutlinePiece& p) { return distance(p.points.front(), p.points.back()); };
+    const std::size_t first = starts_at_virtual.size() - pieces.size();
+    if (pieces.size() > 1 && length(pieces.front()) <= sliver && !starts_at_virtual[first + 1]) {
+      pieces.erase(pieces.begin());
+      starts_at_virtual.erase(starts_at_virtual.begin() + static_cast<std::ptrdiff_t>(first + 1));
+      pieces.front().points.front() = it.a.point;
+    }
+    if (pieces.size() > 1 && length(pieces.back()) <= sliver && !starts_at_virtual.back()) {
+      pieces.pop_back();
+      starts_at_virtual.pop_back();
+      pieces.back().points.back() = it.b.point;
+    }
   }
 
   // The corner type where a boundary edge ends (and the next starts) inside a range.

@@ -518,7 +518,9 @@ class BlockMesher {
       for (int i = 0; i < 4; ++i) {
         const int a = q[i];
         const int b = q[(i + 1) % 4];
-        if (a == b) fail("an element has a collapsed side at " + at(mesh_.nodes[a]));
+        // Nodes closer than the face's own tolerance are one point to CAD and to a solver.
+        if (a == b || distance(mesh_.nodes[a], mesh_.nodes[b]) <= face_.tolerance)
+          fail("an element has a collapsed side at " + at(mesh_.nodes[a]));
         ++uses[{std::min(a, b), std::max(a, b)}];
       }
     }
