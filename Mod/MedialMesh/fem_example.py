@@ -9,6 +9,8 @@ Gmsh mesh object) and solved by CalculiX through FreeCAD's own ccxtools.
     result = fem_example.solve(analysis, working_dir)   # a Fem::FemResultObject
 """
 
+import os
+
 import FreeCAD
 import ObjectsFem
 import Part
@@ -106,6 +108,7 @@ def solve(analysis, working_dir):
     solver = next(o for o in analysis.Group if o.isDerivedFrom("Fem::FemSolverObjectPython"))
     fea = ccxtools.FemToolsCcx(analysis, solver)
     fea.update_objects()
+    os.makedirs(working_dir, exist_ok=True)  # ccxtools would fall back to a temporary folder
     fea.setup_working_dir(working_dir)
     problems = fea.check_prerequisites()
     if problems:

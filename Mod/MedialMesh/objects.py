@@ -16,7 +16,7 @@ a parameter changes, and a failure leaves an empty FemMesh and the problem.
 import Fem
 import FreeCAD
 import Part
-from _medialmesh import InputError
+from _medialmesh import InputError, SelfCheckError
 
 from . import analysis, decomposition, meshing
 
@@ -200,8 +200,9 @@ def update_sketch(sketch, placement, splits):
 
 def report_failure(obj, error):
     """Put the problem of a failed execute in the report view and return it.
-    An InputError names the face already; anything else gets it here."""
-    message = str(error) if isinstance(error, ValueError) else f"{describe_source(obj)}: internal error: {error!r}"
+    An InputError or SelfCheckError names the face already; anything else gets it here."""
+    named = isinstance(error, (ValueError, SelfCheckError))
+    message = str(error) if named else f"{describe_source(obj)}: internal error: {error!r}"
     FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}: {message}\n")
     return message
 
@@ -374,8 +375,8 @@ def linked_faces(obj):
 
 
 def attach_quad_mesh_view_provider(obj):
-    """Give the mesh object the workbench's view provider; FreeCAD's own
-    (which draws the FemMesh) stays when this build has none."""
+    """Give the mesh object the workbench's view provider, when this build
+    has it (FreeCAD's own draws nothing without a proxy)."""
     from . import viewproviders
 
     view_provider = getattr(viewproviders, "ViewProviderMedialQuadMesh", None)

@@ -170,6 +170,14 @@ class TestMeshFace(unittest.TestCase):
         with self.assertRaisesRegex(MedialMesh.InputError, "Part.Face"):
             MedialMesh.mesh_face("not a face")
 
+    def test_a_quad_with_two_corners_at_one_point_is_refused(self):
+        import numpy
+
+        nodes = numpy.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 1, 0]])
+        meshing.check_corners_distinct(nodes, numpy.array([[0, 1, 2, 3]]), ["square"])
+        with self.assertRaisesRegex(MedialMesh.SelfCheckError, r"square: .*1 quads have two corners at one point"):
+            meshing.check_corners_distinct(nodes, numpy.array([[0, 1, 2, 3], [0, 1, 3, 4]]), ["square"])
+
     def test_two_faces(self):
         # Two halves of a rectangle sharing the edge x = 1.
         left, right = Part.makePlane(1, 1), Part.makePlane(1, 1, FreeCAD.Vector(1, 0, 0))
@@ -283,10 +291,9 @@ class TestMeshObject(unittest.TestCase):
 
     def test_sketch_face_and_imported_step(self):
         sketch = self.doc.addObject("Sketcher::SketchObject", "Profile")
-        corners = [FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(3, 0, 0), FreeCAD.Vector(3, 2, 0), FreeCAD.Vector(0, 2, 0)]
+        corners = [FreeCAD.Vector(x, y, 0) for x, y in ((0, 0), (3, 0), (3, 1), (1, 1), (1, 2), (0, 2))]  # an L
         for a, b in zip(corners, corners[1:] + corners[:1]):
             sketch.addGeometry(Part.LineSegment(a, b))
-        sketch.addGeometry(Part.Circle(FreeCAD.Vector(1.5, 1, 0), FreeCAD.Vector(0, 0, 1), 0.5))
         sketch.Placement = PLACEMENT
         face = self.doc.addObject("Part::Face", "Face")
         face.Sources = [sketch]
