@@ -286,7 +286,8 @@ class MedialQuadMesh:
         obj.Type = QUAD_MESH_TYPE
         # Global: the faces may sit inside PartDesign bodies or App::Part containers, the mesh beside them.
         add("App::PropertyLinkSubListGlobal", "Source", "Mesh", "The planar faces meshed (of one or more objects)")
-        add("App::PropertyLength", "ElementSize", "Mesh", "Target element size; 0: the faces' bounding-box diagonal / 20")
+        add("App::PropertyLength", "ElementSize", "Mesh",
+            "Target element size; 0: the faces' bounding-box diagonal / 20")
         if add("App::PropertyFloat", "MergeFactor", "Mesh",
                "Merge singularities closer than this factor (0.25 to 1) times their medial radius; 0: do not merge"):
             obj.MergeFactor = 0.75
@@ -296,7 +297,8 @@ class MedialQuadMesh:
         if add("App::PropertyBool", "Smoothing", "Mesh", "Smooth the mesh inside the blocks"):
             obj.Smoothing = True
         # Hidden: see MedialDecomposition.Sketch.
-        add("App::PropertyLinkHidden", "Sketch", "Mesh", "The decomposition's splits as a sketch on the first face's plane")
+        add("App::PropertyLinkHidden", "Sketch", "Mesh",
+            "The decomposition's splits as a sketch on the first face's plane")
         # FreeCAD's solvers find the geometry a mesh is made from in Part (as for its Gmsh mesh objects).
         add("App::PropertyLinkGlobal", "Part", "FEM Mesh", "The object of the first source face", 1)
         read_only = 1
@@ -339,7 +341,8 @@ class MedialQuadMesh:
         faces, names = linked_faces(obj)
         if obj.Part != obj.Source[0][0]:
             obj.Part = obj.Source[0][0]
-        result = meshing.mesh_face(faces, size=obj.ElementSize.Value or None, order=ELEMENT_ORDERS.index(obj.ElementOrder) + 1,
+        order = ELEMENT_ORDERS.index(obj.ElementOrder) + 1
+        result = meshing.mesh_face(faces, size=obj.ElementSize.Value or None, order=order,
                                    merge=obj.MergeFactor or None, smooth=obj.Smoothing, name=names)
         obj.FemMesh = result.femmesh
         quality = result.quality

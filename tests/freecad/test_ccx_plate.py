@@ -14,7 +14,6 @@ Run by run_freecad_test.sh (see freecad_runner.py):
   tests/freecad/run_freecad_test.sh tests/freecad/test_ccx_plate.py [BUILD_DIR [SHARED_DIR]]
 """
 
-import math
 import sys
 import tempfile
 import time

@@ -6,7 +6,6 @@ Run by run_freecad_test.sh (see freecad_runner.py):
   tests/freecad/run_freecad_test.sh tests/freecad/test_mesh_object.py [BUILD_DIR [SHARED_DIR]]
 """
 
-import math
 import os
 import sys
 import tempfile
@@ -18,7 +17,6 @@ import Fem
 import FreeCAD
 import ObjectsFem
 import Part
-import Sketcher
 
 import MedialMesh
 from MedialMesh import analysis, meshing
@@ -103,7 +101,8 @@ class TestMeshFace(unittest.TestCase):
         self.assertGreater(fine / coarse, 8)  # four times as many per halving of the size
         self.assertLess(fine / coarse, 32)
         automatic = MedialMesh.mesh_face(face).femmesh.FaceCount
-        self.assertEqual(automatic, MedialMesh.mesh_face(face, size=face.BoundBox.DiagonalLength / 20).femmesh.FaceCount)
+        explicit = MedialMesh.mesh_face(face, size=face.BoundBox.DiagonalLength / 20).femmesh.FaceCount
+        self.assertEqual(automatic, explicit)
 
     def test_plate_second_order(self):
         face = shared_face("plate_with_hole")
@@ -276,7 +275,8 @@ class TestMeshObject(unittest.TestCase):
 
     def test_body_inside_a_placed_app_part(self):
         container = self.doc.addObject("App::Part", "Assembly")
-        container.Placement = FreeCAD.Placement(FreeCAD.Vector(100, -20, 7), FreeCAD.Rotation(FreeCAD.Vector(0, 1, 1), 70))
+        container.Placement = FreeCAD.Placement(FreeCAD.Vector(100, -20, 7),
+                                                FreeCAD.Rotation(FreeCAD.Vector(0, 1, 1), 70))
         body, pad, radius = plate_body(self.doc)
         container.addObject(body)
         self.doc.recompute()
