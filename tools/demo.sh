@@ -5,11 +5,15 @@
 # picture and the block faces as BREP), the all-quad mesh (.inp, .msh, .vtu,
 # its quality report as text and JSON, and its picture), and a FreeCAD
 # document with the face analysed and decomposed plus a picture of its 3D
-# view into out/.
-#   tools/demo.sh [FACE_FILE]   (default: Resources/examples/bracket.brep)
+# view, and a FEM Analysis of a second face (quad mesh object, its Sketch,
+# CalculiX result through FreeCAD's ccxtools) with pictures of the mesh and
+# of the stress into out/.
+#   tools/demo.sh [FACE_FILE [FEM_FACE_FILE]]
+#   (defaults: Resources/examples/bracket.brep, Resources/examples/plate_with_hole.brep)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 input="${1:-$root/Resources/examples/bracket.brep}"
+fem_input="${2:-$root/Resources/examples/plate_with_hole.brep}"
 name="$(basename "${input%.*}")"
 out="$root/out"
 
@@ -44,7 +48,7 @@ rsvg-convert -o "$out/$name.mesh.png" "$out/$name.mesh.svg"
 home="$(mktemp -d)"
 trap 'rm -rf "$home"' EXIT
 HOME="$home" XDG_RUNTIME_DIR="$home" QTWEBENGINE_DISABLE_SANDBOX=1 \
-  MEDIALMESH_DEMO_INPUT="$input" MEDIALMESH_DEMO_OUT="$out/$name.freecad" \
+  MEDIALMESH_DEMO_INPUT="$input" MEDIALMESH_DEMO_FEM_INPUT="$fem_input" MEDIALMESH_DEMO_OUT="$out/$name.freecad" \
   xvfb-run -a -s "-screen 0 1280x1024x24" freecad "$root/tools/freecad_demo.py" --module-path "$root" \
   </dev/null 2>&1 | tee "$home/log" | grep -E "^freecad-demo|Error|Traceback" || true
 grep -q "^freecad-demo" "$home/log" || { echo "demo: the FreeCAD part failed" >&2; exit 1; }
@@ -53,4 +57,6 @@ echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and cor
   "$name.singularities.txt/.json/.svg/.png (flow types and singularities)," \
   "$name.decomposition.json/.svg/.png and $name.blocks.brep (the blocks)," \
   "$name.mesh.inp/.msh/.vtu, $name.mesh.txt/.json (quality) and $name.mesh.svg/.png (the quad mesh)," \
-  "$name.freecad.FCStd/.png (the analysis and decomposition in FreeCAD)"
+  "$name.freecad.FCStd/.png (the analysis and decomposition in FreeCAD; the FEM Analysis of" \
+  "$(basename "${fem_input%.*}") with its quad mesh and CalculiX result)," \
+  "$name.freecad.mesh.png/.stress.png (that mesh and its von Mises stress), $name.freecad.ccx/ (CalculiX files)"

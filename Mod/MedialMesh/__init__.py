@@ -97,6 +97,40 @@ def make_decomposition_object(doc, obj, subname, merge=0.75):
     return make(doc, obj, subname, merge=merge)
 
 
+def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=None):
+    """Quad-mesh a planar Part.Face (placed in 3-D as it is) or a list of them.
+
+    size: target element size (None or 0: the bounding-box diagonal / 20);
+    order: 1 (4-node quads) or 2 (8-node quads); merge: merge singularities
+    closer than this factor (0.25 to 1) times their medial radius, None or 0:
+    no merging; smooth: smooth the mesh. The result
+    (MedialMesh.meshing.FaceMesh) has femmesh (a Fem.FemMesh of quads, node
+    ids 1..N, element ids 1..M), splits (Part edges and wires of the
+    decomposition), singularities ((Vector, k) pairs), quality (quads, nodes,
+    min_scaled_jacobian, mean_scaled_jacobian, irregular_nodes, seconds, ...),
+    notes, placement (the first face's 2-D frame) and per_face.
+    Raises InputError naming the face and the problem.
+    """
+    from .meshing import mesh_face as mesh
+
+    return mesh(face_or_faces, size=size, order=order, merge=merge, smooth=smooth, name=name)
+
+
+def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=True, analysis=None,
+                     name="MedialQuadMesh"):
+    """Create, compute and return the parametric quad mesh of faces
+    `subnames` ('Face3' or ['Face1', 'Face2']) of document object `obj` (or,
+    with subnames None, of the (object, 'FaceN') pairs `obj`): a
+    Fem::FemMeshObjectPython with a Sketch of the splits, put into `analysis`
+    (or the active FEM analysis, or the document's only one), that recomputes
+    when a face or a parameter (ElementSize, MergeFactor, ElementOrder,
+    Smoothing) changes. size, order, merge, smooth: as for mesh_face."""
+    from .objects import make_mesh_object as make
+
+    return make(doc, obj, subnames, size=size, order=order, merge=merge, smooth=smooth, analysis=analysis,
+                name=name)
+
+
 def to_3d(frame, x, y):
     """Map a point of a face's 2-D frame (from boundary_model or medial_axis) to 3-D."""
     return tuple(o + x * a + y * b for o, a, b in zip(frame["origin"], frame["x_dir"], frame["y_dir"]))

@@ -88,6 +88,13 @@ def decompose_face(face, merge=None, mesh_size=None, name="face"):
     if not hasattr(face, "exportBrepToString"):
         raise _medialmesh.InputError(f"{name}: expected a Part.Face, got {type(face).__name__}")
     report = _medialmesh.decompose(face.exportBrepToString(), name, merge, mesh_size)
+    return from_report(report, face, name)
+
+
+def from_report(report, face, name="face"):
+    """The FaceDecomposition of a decomposition report (from
+    _medialmesh.decompose, or the 'decomposition' of _medialmesh.mesh) of
+    the Part.Face `face`, in 3-D."""
 
     def to_3d(x, y):
         return FreeCAD.Vector(*frame_to_3d(report["frame"], x, y))

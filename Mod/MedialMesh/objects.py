@@ -1,23 +1,28 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """The parametric objects: the analysis of a linked face (its medial axis,
-cut into runs of one flow type, and its mesh singularities) and its block
-decomposition (the splits, with a Sketch of them).
+cut into runs of one flow type, and its mesh singularities), its block
+decomposition (the splits, with a Sketch of them) and the quad mesh of
+linked faces (a FEM mesh object, with a Sketch of the splits).
 
 The analysis's Shape is the axis as one edge per flow run, in 3-D on the
 face; FlowTypes gives each edge's n. The singularities are kept as positions
 and k. The decomposition's Shape is the splits, in 3-D on the face. Both
 recompute when the face or MergeFactor changes. A face that cannot be
 analysed leaves an empty shape, the problem in Status and in the report view.
+The quad mesh's FemMesh is in 3-D on the faces; it recomputes when a face or
+a parameter changes, and a failure leaves an empty FemMesh and the problem.
 """
 
+import Fem
 import FreeCAD
 import Part
-from _medialmesh import InputError
+from _medialmesh import InputError, SelfCheckError
 
-from . import analysis, decomposition
+from . import analysis, decomposition, meshing
 
 TYPE = "MedialMesh::Analysis"
 DECOMPOSITION_TYPE = "MedialMesh::Decomposition"
+QUAD_MESH_TYPE = "MedialMesh::QuadMesh"
 
 
 def add_face_properties(obj, type_name, group, source_doc):
@@ -159,26 +164,7 @@ class MedialDecomposition:
         obj.Notes = result.notes
         obj.Status = "ok"
         if obj.Sketch:
-            self.update_sketch(obj.Sketch, result)
-
-    def update_sketch(self, sketch, result):
-        """Replace the sketch's geometry by the splits, one line segment per
-        straight piece, in the coordinates of the face's 2-D frame."""
-        to_sketch = result.placement.inverse()
-
-        def in_sketch(point):
-            local = to_sketch.multVec(point)
-            return FreeCAD.Vector(local.x, local.y, 0)  # on the plane, not 1e-16 off it
-
-        segments = [Part.LineSegment(in_sketch(edge.Vertexes[0].Point), in_sketch(edge.Vertexes[-1].Point))
-                    for split in result.splits for edge in split.Edges]
-        sketch.Placement = result.placement
-        sketch.deleteAllGeometry()
-        if segments:
-            sketch.addGeometry(segments)
-        # The sketch does not depend on this object (see Sketch above): its
-        # shape must follow now, even when only this object is recomputed.
-        sketch.recompute()
+            update_sketch(obj.Sketch, result.placement, result.splits)
 
     def __getstate__(self):
         return None
@@ -187,10 +173,36 @@ class MedialDecomposition:
         return None
 
 
+def update_sketch(sketch, placement, splits):
+    """Replace the sketch's geometry by the splits lying on the plane of
+    `placement` (a face's 2-D frame), one line segment per straight piece, in
+    the frame's coordinates; splits off that plane (on other faces) are left out."""
+    to_sketch = placement.inverse()
+    tolerance = 1e-9 * max([1.0] + [split.BoundBox.DiagonalLength for split in splits])
+
+    def in_sketch(point):
+        local = to_sketch.multVec(point)
+        return FreeCAD.Vector(local.x, local.y, 0)  # on the plane, not 1e-16 off it
+
+    def on_plane(edge):
+        return all(abs(to_sketch.multVec(v.Point).z) <= tolerance for v in edge.Vertexes)
+
+    segments = [Part.LineSegment(in_sketch(edge.Vertexes[0].Point), in_sketch(edge.Vertexes[-1].Point))
+                for split in splits for edge in split.Edges if on_plane(edge)]
+    sketch.Placement = placement
+    sketch.deleteAllGeometry()
+    if segments:
+        sketch.addGeometry(segments)
+    # The sketch does not depend on the object that owns it (a hidden link):
+    # its shape must follow now, even when only that object is recomputed.
+    sketch.recompute()
+
+
 def report_failure(obj, error):
     """Put the problem of a failed execute in the report view and return it.
-    An InputError names the face already; anything else gets it here."""
-    message = str(error) if isinstance(error, ValueError) else f"{describe_source(obj)}: internal error: {error!r}"
+    An InputError or SelfCheckError names the face already; anything else gets it here."""
+    named = isinstance(error, (ValueError, SelfCheckError))
+    message = str(error) if named else f"{describe_source(obj)}: internal error: {error!r}"
     FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}: {message}\n")
     return message
 
@@ -206,11 +218,11 @@ def linked_face(obj):
 
 
 def describe_source(obj):
-    """'Body.Pad.Face7'-like name of the linked face, for messages."""
+    """'Pad.Face7'-like name of the linked face (faces), for messages."""
     if not obj.Source:
         return "(no face)"
-    source, subnames = obj.Source
-    return f"{source.Label}.{','.join(subnames) or '?'}"
+    links = obj.Source if isinstance(obj.Source, list) else [obj.Source]  # a LinkSubList, or a LinkSub
+    return ", ".join(f"{source.Label}.{','.join(subnames) or '?'}" for source, subnames in links)
 
 
 def make_analysis_object(doc, obj, subname, merge=0.75, name="MedialAnalysis"):
@@ -248,3 +260,189 @@ def make_decomposition_object(doc, obj, subname, merge=0.75, name="MedialDecompo
         sketch.ViewObject.Visibility = False  # the decomposition draws the same lines
     decomposition_obj.recompute()
     return decomposition_obj
+
+
+ELEMENT_ORDERS = ["1st", "2nd"]  # as FreeCAD's Gmsh mesh object names them
+
+
+class MedialQuadMesh:
+    """Proxy of a Fem::FemMeshObjectPython holding the quad mesh of its
+    Source faces, with a Sketch of the decomposition's splits."""
+
+    Type = QUAD_MESH_TYPE
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.add_properties(obj)
+
+    def add_properties(self, obj):
+        def add(kind, name, group, doc, mode=0):
+            if hasattr(obj, name):
+                return False
+            obj.addProperty(kind, name, group, doc, mode)
+            return True
+
+        add("App::PropertyString", "Type", "Base", "Kind of MedialMesh object", 1)
+        obj.Type = QUAD_MESH_TYPE
+        # Global: the faces may sit inside PartDesign bodies or App::Part containers, the mesh beside them.
+        add("App::PropertyLinkSubListGlobal", "Source", "Mesh", "The planar faces meshed (of one or more objects)")
+        add("App::PropertyLength", "ElementSize", "Mesh",
+            "Target element size; 0: the faces' bounding-box diagonal / 20")
+        if add("App::PropertyFloat", "MergeFactor", "Mesh",
+               "Merge singularities closer than this factor (0.25 to 1) times their medial radius; 0: do not merge"):
+            obj.MergeFactor = 0.75
+        if add("App::PropertyEnumeration", "ElementOrder", "Mesh", "1st: 4-node quads, 2nd: 8-node quads"):
+            obj.ElementOrder = ELEMENT_ORDERS
+            obj.ElementOrder = "1st"
+        if add("App::PropertyBool", "Smoothing", "Mesh", "Smooth the mesh inside the blocks"):
+            obj.Smoothing = True
+        # Hidden: see MedialDecomposition.Sketch.
+        add("App::PropertyLinkHidden", "Sketch", "Mesh",
+            "The decomposition's splits as a sketch on the first face's plane")
+        # FreeCAD's solvers find the geometry a mesh is made from in Part (as for its Gmsh mesh objects).
+        add("App::PropertyLinkGlobal", "Part", "FEM Mesh", "The object of the first source face", 1)
+        read_only = 1
+        add("App::PropertyInteger", "QuadCount", "Results", "Quads in the mesh", read_only)
+        add("App::PropertyInteger", "NodeCount", "Results", "Nodes in the mesh", read_only)
+        add("App::PropertyFloat", "MinScaledJacobian", "Results", "Smallest scaled Jacobian of a quad (1: a square)",
+            read_only)
+        add("App::PropertyFloat", "MeanScaledJacobian", "Results", "Mean scaled Jacobian of the quads", read_only)
+        add("App::PropertyInteger", "IrregularNodes", "Results",
+            "Nodes with other than 4 elements inside, or other than the corner's number on the boundary", read_only)
+        add("App::PropertyFloat", "Seconds", "Results", "Time the mesh took, FemMesh included", read_only)
+        add("App::PropertyString", "Status", "Results", "'ok', or why the faces could not be meshed", read_only)
+        add("App::PropertyStringList", "Notes", "Results", "What the mesher had to do, for the user", read_only)
+
+    def onDocumentRestored(self, obj):
+        self.add_properties(obj)
+        if FreeCAD.GuiUp and obj.ViewObject and getattr(obj.ViewObject, "Proxy", None) is None:
+            attach_quad_mesh_view_provider(obj)
+
+    def execute(self, obj):
+        # No exception may leave here: FreeCAD would show a traceback, not the problem.
+        try:
+            self.mesh(obj)
+        except Exception as error:  # InputError, or anything unforeseen in a user's file
+            message = report_failure(obj, error)
+            obj.FemMesh = Fem.FemMesh()
+            obj.QuadCount = 0
+            obj.NodeCount = 0
+            obj.MinScaledJacobian = 0.0
+            obj.MeanScaledJacobian = 0.0
+            obj.IrregularNodes = 0
+            obj.Seconds = 0.0
+            obj.Notes = []
+            obj.Status = message
+            if obj.Sketch:  # no splits left over from earlier faces
+                obj.Sketch.deleteAllGeometry()
+                obj.Sketch.recompute()
+
+    def mesh(self, obj):
+        faces, names = linked_faces(obj)
+        if obj.Part != obj.Source[0][0]:
+            obj.Part = obj.Source[0][0]
+        order = ELEMENT_ORDERS.index(obj.ElementOrder) + 1
+        result = meshing.mesh_face(faces, size=obj.ElementSize.Value or None, order=order,
+                                   merge=obj.MergeFactor or None, smooth=obj.Smoothing, name=names)
+        obj.FemMesh = result.femmesh
+        quality = result.quality
+        obj.QuadCount = quality["quads"]
+        obj.NodeCount = quality["nodes"]
+        obj.MinScaledJacobian = quality["min_scaled_jacobian"]
+        obj.MeanScaledJacobian = quality["mean_scaled_jacobian"]
+        obj.IrregularNodes = quality["irregular_nodes"]
+        obj.Seconds = quality["seconds"]
+        obj.Notes = result.notes
+        obj.Status = "ok"
+        if obj.Sketch:
+            update_sketch(obj.Sketch, result.placement, result.splits)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+def linked_faces(obj):
+    """The faces obj.Source (a LinkSubList) links, placed where they are seen
+    in 3-D, and their 'Pad.Face3'-like names."""
+    faces, names = [], []
+    for source, subnames in obj.Source:
+        for subname in subnames:
+            faces.append(analysis.global_face(source, subname))
+            names.append(f"{source.Label}.{subname}")
+    if not faces:
+        raise InputError("no face linked in Source")
+    return faces, names
+
+
+def attach_quad_mesh_view_provider(obj):
+    """Give the mesh object the workbench's view provider, when this build
+    has it (FreeCAD's own draws nothing without a proxy)."""
+    from . import viewproviders
+
+    view_provider = getattr(viewproviders, "ViewProviderMedialQuadMesh", None)
+    if view_provider is not None:
+        view_provider(obj.ViewObject)
+
+
+def _source_links(obj, subnames):
+    """(object, subname) pairs from make_mesh_object's arguments."""
+    if subnames is None:
+        pairs = [tuple(pair) for pair in obj]
+    else:
+        pairs = [(obj, name) for name in ([subnames] if isinstance(subnames, str) else subnames)]
+    if not pairs:
+        raise InputError("make_mesh_object: no face given")
+    for source, subname in pairs:
+        if not hasattr(source, "Shape") or not isinstance(subname, str):
+            raise InputError(f"make_mesh_object: expected (object, 'FaceN') pairs, got ({source!r}, {subname!r})")
+    return pairs
+
+
+def _target_analysis(doc, analysis_obj):
+    if analysis_obj is not None:
+        return analysis_obj
+    if FreeCAD.GuiUp:
+        import FemGui
+
+        active = FemGui.getActiveAnalysis()
+        if active is not None and active.Document == doc:
+            return active
+    analyses = [o for o in doc.Objects if o.isDerivedFrom("Fem::FemAnalysis")]
+    return analyses[0] if len(analyses) == 1 else None
+
+
+def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=True, analysis=None,
+                     name="MedialQuadMesh"):
+    """Create the parametric quad mesh of faces `subnames` ('Face3' or a list)
+    of `obj` in `doc` (or, with subnames None, of the (object, 'FaceN') pairs
+    `obj`), with its Sketch, put it into `analysis` (or the active FEM
+    analysis, or the document's only one), compute it and return it.
+    size: element size (None or 0: automatic); order 1 or 2; merge: the
+    MergeFactor (None or 0: no merging); smooth: Smoothing."""
+    pairs = _source_links(obj, subnames)
+    if order not in (1, 2):
+        raise InputError(f"make_mesh_object: element order must be 1 or 2, got {order!r}")
+    mesh_obj = doc.addObject("Fem::FemMeshObjectPython", name)
+    MedialQuadMesh(mesh_obj)
+    mesh_obj.Source = [(source, [subname]) for source, subname in pairs]
+    mesh_obj.ElementSize = size or 0
+    mesh_obj.ElementOrder = ELEMENT_ORDERS[order - 1]
+    mesh_obj.MergeFactor = merge or 0
+    mesh_obj.Smoothing = smooth
+    first, first_subname = pairs[0]
+    mesh_obj.Part = first
+    mesh_obj.Label = f"{name}_{first.Label}_{first_subname}" + ("_etc" if len(pairs) > 1 else "")
+    sketch = doc.addObject("Sketcher::SketchObject", name + "Sketch")
+    sketch.Label = f"{mesh_obj.Label}_Sketch"
+    mesh_obj.Sketch = sketch
+    target = _target_analysis(doc, analysis)
+    if target is not None:
+        target.addObject(mesh_obj)
+    if FreeCAD.GuiUp:
+        attach_quad_mesh_view_provider(mesh_obj)
+        sketch.ViewObject.Visibility = False  # the mesh shows the same lines
+    mesh_obj.recompute()
+    return mesh_obj

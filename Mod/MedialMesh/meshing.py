@@ -1,0 +1,177 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Quad-mesh planar faces into a Fem.FemMesh, with the decomposition that
+made the mesh (its splits and singularities) as FreeCAD geometry in 3-D."""
+
+import time
+from dataclasses import dataclass
+from typing import List, Tuple
+
+import Fem
+import FreeCAD
+import numpy
+import Part
+
+import _medialmesh
+
+from . import decomposition
+
+# The automatic element size: the faces' bounding-box diagonal over this.
+AUTOMATIC_SIZE_DIVISOR = 20.0
+
+
+@dataclass
+class FacePart:
+    """What one face of a mesh_face call gave."""
+
+    name: str
+    splits: List[Part.Shape]  # a Part.Edge per straight split, a Part.Wire per bent one
+    singularities: List[Tuple[FreeCAD.Vector, int]]  # (where, k): the node there has 4 + k elements
+    quality: dict  # the face's quality report
+    notes: List[str]
+    placement: FreeCAD.Placement  # the face's 2-D frame: maps its (x, y, 0) to 3-D
+
+
+@dataclass
+class FaceMesh:
+    """The result of mesh_face.
+
+    femmesh: a Fem.FemMesh of 4-node (order 1) or 8-node (order 2) quads,
+    node ids 1..N, element ids 1..M; an 8-node quad lists its corners
+    counter-clockwise seen from the face's normal, then the mid-side nodes of
+    the sides corner 1-2, 2-3, 3-4, 4-1 (FreeCAD's, SMESH's and CalculiX's S8
+    order). splits, singularities: of every face, in 3-D. quality: quads,
+    nodes, min_scaled_jacobian, mean_scaled_jacobian, irregular_nodes
+    (interior and boundary), seconds (the whole call, FemMesh included),
+    mesher_seconds (the compiled mesher alone) and the rest of the mesher's
+    report. placement: the first face's 2-D frame (for a sketch).
+    per_face: a FacePart per face.
+    """
+
+    femmesh: "Fem.FemMesh"
+    splits: List[Part.Shape]
+    singularities: List[Tuple[FreeCAD.Vector, int]]
+    quality: dict
+    notes: List[str]
+    placement: FreeCAD.Placement
+    per_face: List[FacePart]
+
+
+def build_femmesh(nodes, elements):
+    """A Fem.FemMesh of the (N, 3) nodes and the (M, 4 or 8) 0-based quads."""
+    femmesh = Fem.FemMesh()
+    add_node = femmesh.addNode
+    for node_id, (x, y, z) in enumerate(nodes.tolist(), 1):
+        add_node(x, y, z, node_id)
+    add_face = femmesh.addFace
+    for element_id, element in enumerate((elements + 1).tolist(), 1):
+        add_face(element, element_id)
+    return femmesh
+
+
+def check_corners_distinct(nodes, elements, names):
+    """Raise SelfCheckError when a quad has two corners at one point (a
+    solver cannot use it, and the quality report does not see it)."""
+    corners = nodes[elements[:, :4]]
+    pairs = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3)]
+    lengths = numpy.stack([numpy.linalg.norm(corners[:, a] - corners[:, b], axis=1) for a, b in pairs], axis=1)
+    scale = numpy.linalg.norm(nodes.max(axis=0) - nodes.min(axis=0))
+    bad = numpy.flatnonzero(lengths.min(axis=1) <= 1e-9 * scale)
+    if len(bad):
+        first = bad[0]
+        x, y, z = corners[first, pairs[int(numpy.argmin(lengths[first]))][0]]
+        raise _medialmesh.SelfCheckError(
+            f"{', '.join(names)}: self-check failed: {len(bad)} quads have two corners at one point, "
+            f"the first (element {first + 1}) at ({x:.6g}, {y:.6g}, {z:.6g})")
+
+
+def _quality(report):
+    quality = dict(report)
+    quality["irregular_nodes"] = report["irregular_interior"] + report["irregular_boundary"]
+    quality["mesher_seconds"] = report["seconds"]
+    return quality
+
+
+def _face_part(name, face, report, decomposition_report):
+    result = decomposition.from_report(decomposition_report, face, name)
+    notes = list(report.get("notes", []))
+    notes += [note for note in result.notes if note not in notes]
+    return FacePart(
+        name=name,
+        splits=result.splits,
+        singularities=[(s.point, s.k) for s in result.singularities],
+        quality=_quality(report),
+        notes=notes,
+        placement=result.placement,
+    )
+
+
+def _names(name, count):
+    if isinstance(name, (list, tuple)):
+        if len(name) != count:
+            raise _medialmesh.InputError(f"{count} faces but {len(name)} names")
+        return [str(n) for n in name]
+    if count == 1:
+        return [name or "face"]
+    return [f"{name or 'face'}{i + 1}" for i in range(count)]
+
+
+def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=None):
+    """Quad-mesh a planar Part.Face (placed in 3-D as it is) or a list of them.
+
+    size: target element size in document units; None or 0: the faces'
+    bounding-box diagonal / 20. order: 1 (4-node quads) or 2 (8-node).
+    merge: merge singularities closer than this factor (0.25 to 1) times their
+    medial radius; None or 0: no merging. smooth: smooth the mesh.
+    name: names the face (or, a list, the faces) in messages.
+    Returns a FaceMesh. Raises MedialMesh.InputError (a ValueError) naming the
+    face and the problem, MedialMesh.SelfCheckError when a stage fails its
+    own checks.
+    """
+    start = time.perf_counter()
+    faces = list(face_or_faces) if isinstance(face_or_faces, (list, tuple)) else [face_or_faces]
+    names = _names(name, len(faces))
+    if not faces:
+        raise _medialmesh.InputError("no face to mesh")
+    for face, face_name in zip(faces, names):
+        if not isinstance(face, Part.Face):
+            raise _medialmesh.InputError(f"{face_name}: expected a Part.Face, got {type(face).__name__}")
+    if order not in (1, 2):
+        raise _medialmesh.InputError(f"{names[0]}: element order must be 1 or 2, got {order!r}")
+    if not size:
+        box = faces[0].BoundBox
+        for face in faces[1:]:
+            box.add(face.BoundBox)
+        size = box.DiagonalLength / AUTOMATIC_SIZE_DIVISOR
+    merge = merge or None
+
+    if len(faces) == 1:
+        result = _medialmesh.mesh(faces[0].exportBrepToString(), size, order=order, merge=merge, smooth=smooth,
+                                  name=names[0])
+        per_face = [_face_part(names[0], faces[0], result["report"], result["decomposition"])]
+    else:
+        if not hasattr(_medialmesh, "mesh_faces"):
+            raise _medialmesh.InputError(
+                f"{', '.join(names)}: meshing several faces together needs _medialmesh.mesh_faces, "
+                "which this build of the compiled module does not have")
+        result = _medialmesh.mesh_faces([face.exportBrepToString() for face in faces], size, order=order,
+                                        merge=merge, merge_size=None, smooth=smooth, names=names)
+        per_face = [_face_part(n, f, r["report"], r["decomposition"])
+                    for n, f, r in zip(names, faces, result["faces"])]
+
+    check_corners_distinct(result["nodes"], result["elements"], names)
+    femmesh = build_femmesh(result["nodes"], result["elements"])
+    quality = _quality(result["report"])
+    quality["seconds"] = time.perf_counter() - start
+    notes = []
+    for part in per_face:
+        prefix = f"{part.name}: " if len(per_face) > 1 else ""
+        notes += [prefix + note for note in part.notes]
+    return FaceMesh(
+        femmesh=femmesh,
+        splits=[split for part in per_face for split in part.splits],
+        singularities=[s for part in per_face for s in part.singularities],
+        quality=quality,
+        notes=notes,
+        placement=per_face[0].placement,
+        per_face=per_face,
+    )

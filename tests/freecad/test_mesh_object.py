@@ -1,0 +1,387 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The quad-mesh macro API (mesh_face) and the parametric FEM mesh object
+(make_mesh_object), in freecadcmd.
+
+Run by run_freecad_test.sh (see freecad_runner.py):
+  tests/freecad/run_freecad_test.sh tests/freecad/test_mesh_object.py [BUILD_DIR [SHARED_DIR]]
+"""
+
+import os
+import sys
+import tempfile
+import time
+import unittest
+
+import _medialmesh
+import Fem
+import FreeCAD
+import ObjectsFem
+import Part
+
+import MedialMesh
+from MedialMesh import analysis, meshing
+from test_analysis import PLACEMENT, plate_body, shared_face, top_face_name
+
+TOLERANCE = 1e-7
+
+
+def element_nodes(femmesh):
+    """Node ids of every face element, in the FemMesh's order."""
+    return [femmesh.getElementNodes(e) for e in femmesh.Faces]
+
+
+def max_distance_off(face, femmesh):
+    """How far the mesh's nodes stray from the face (its plane and its inside)."""
+    return max(face.distToShape(Part.Vertex(p))[0] for p in femmesh.Nodes.values())
+
+
+class TestMeshFace(unittest.TestCase):
+
+    def check_quads(self, femmesh, order):
+        per_element = 4 if order == 1 else 8
+        self.assertGreater(femmesh.FaceCount, 0)
+        self.assertEqual(femmesh.QuadrangleCount, femmesh.FaceCount)
+        self.assertEqual((femmesh.TriangleCount, femmesh.VolumeCount), (0, 0))
+        self.assertEqual(sorted(femmesh.Nodes), list(range(1, femmesh.NodeCount + 1)))
+        self.assertEqual(sorted(femmesh.Faces), list(range(1, femmesh.FaceCount + 1)))
+        for nodes in element_nodes(femmesh):
+            self.assertEqual(len(nodes), per_element)
+
+    def check_counter_clockwise(self, face, femmesh):
+        """Every quad's corners run counter-clockwise seen from the face's normal."""
+        normal = face.normalAt(0, 0)
+        for nodes in element_nodes(femmesh):
+            p = [femmesh.getNodeById(n) for n in nodes[:4]]
+            area = (p[2] - p[0]).cross(p[3] - p[1]).dot(normal) / 2
+            self.assertGreater(area, 0)
+
+    def test_plate_first_order_in_a_moved_face(self):
+        face = shared_face("plate_with_hole")
+        face.Placement = PLACEMENT
+        size = 0.2
+        result = MedialMesh.mesh_face(face, size=size)
+        self.assertIsInstance(result.femmesh, Fem.FemMesh)
+        self.check_quads(result.femmesh, 1)
+        self.check_counter_clockwise(face, result.femmesh)
+        quads = result.femmesh.FaceCount
+        # about one quad per size x size of area
+        self.assertGreater(quads, 0.5 * face.Area / size ** 2)
+        self.assertLess(quads, 2.0 * face.Area / size ** 2)
+        self.assertLess(max_distance_off(face, result.femmesh), TOLERANCE)
+        # the mesh covers the face: its quads' areas add up to the face's (less the hole's chords)
+        total = 0.0
+        for nodes in element_nodes(result.femmesh):
+            p = [result.femmesh.getNodeById(n) for n in nodes]
+            total += (p[2] - p[0]).cross(p[3] - p[1]).Length / 2
+        self.assertAlmostEqual(total / face.Area, 1.0, delta=0.01)
+
+        q = result.quality
+        self.assertEqual((q["quads"], q["nodes"]), (quads, result.femmesh.NodeCount))
+        self.assertGreater(q["min_scaled_jacobian"], 0.5)
+        self.assertGreaterEqual(q["mean_scaled_jacobian"], q["min_scaled_jacobian"])
+        self.assertEqual(q["irregular_nodes"], 4)  # the four 5-valent nodes of the k = +1 singularities
+        self.assertGreater(q["seconds"], 0.0)
+        self.assertEqual(sorted(k for _, k in result.singularities), [1, 1, 1, 1])
+        for point, _ in result.singularities:
+            self.assertLess(face.distToShape(Part.Vertex(point))[0], TOLERANCE)
+        self.assertEqual(len(result.splits), 4)
+        for split in result.splits:
+            self.assertLess(face.distToShape(split)[0], TOLERANCE)
+        # the frame lies on the face, facing its way
+        self.assertLess(face.Surface.projectPoint(result.placement.Base, "LowerDistance"), TOLERANCE)
+        normal = result.placement.Rotation.multVec(FreeCAD.Vector(0, 0, 1))
+        self.assertLess(normal.distanceToPoint(face.normalAt(0, 0)), 1e-9)
+        self.assertEqual(len(result.per_face), 1)
+        self.assertEqual(result.per_face[0].quality["quads"], quads)
+
+    def test_size_sets_the_count(self):
+        face = shared_face("plate_with_hole")
+        coarse = MedialMesh.mesh_face(face, size=0.4).femmesh.FaceCount
+        fine = MedialMesh.mesh_face(face, size=0.1).femmesh.FaceCount
+        self.assertGreater(fine / coarse, 8)  # four times as many per halving of the size
+        self.assertLess(fine / coarse, 32)
+        automatic = MedialMesh.mesh_face(face).femmesh.FaceCount
+        explicit = MedialMesh.mesh_face(face, size=face.BoundBox.DiagonalLength / 20).femmesh.FaceCount
+        self.assertEqual(automatic, explicit)
+
+    def test_plate_second_order(self):
+        face = shared_face("plate_with_hole")
+        first = MedialMesh.mesh_face(face, size=0.2)
+        result = MedialMesh.mesh_face(face, size=0.2, order=2)
+        femmesh = result.femmesh
+        self.check_quads(femmesh, 2)
+        self.check_counter_clockwise(face, femmesh)
+        self.assertEqual(femmesh.FaceCount, first.femmesh.FaceCount)
+        # the corner nodes of the 4-node mesh, and one node per element side, shared by the side's two quads
+        sides = {frozenset((nodes[k], nodes[(k + 1) % 4])) for nodes in element_nodes(femmesh) for k in range(4)}
+        self.assertEqual(femmesh.NodeCount, first.femmesh.NodeCount + len(sides))
+        self.assertLess(max_distance_off(face, femmesh), TOLERANCE)
+        # FreeCAD's order: mid-side node k of the side from corner k to corner k + 1
+        worst = 0.0
+        for nodes in element_nodes(femmesh):
+            p = [femmesh.getNodeById(n) for n in nodes]
+            for k in range(4):
+                side = p[k].distanceToPoint(p[(k + 1) % 4])
+                worst = max(worst, p[4 + k].distanceToPoint((p[k] + p[(k + 1) % 4]) * 0.5) / side)
+        self.assertLess(worst, 0.05)  # only the hole's sides bow, by far less than this
+
+        # CalculiX's S8 through FreeCAD's writer, read back by meshio as 8-node quads
+        import meshio
+        import numpy
+
+        folder = tempfile.mkdtemp()
+        path = os.path.join(folder, "plate.inp")
+        femmesh.write(path)
+        with open(path) as f:
+            text = f.read()
+        self.assertIn("TYPE=S8,", text)
+        with open(os.path.join(folder, "plate_s8r.inp"), "w") as f:
+            f.write(text.replace("TYPE=S8,", "TYPE=S8R,"))  # meshio knows S8 by its reduced twin only
+        read = meshio.read(os.path.join(folder, "plate_s8r.inp"))
+        self.assertEqual([block.type for block in read.cells], ["quad8"])
+        cells = read.cells[0].data
+        self.assertEqual(len(cells), femmesh.FaceCount)
+        points = read.points
+        middle = (points[cells[:, :4]] + points[numpy.roll(cells[:, :4], -1, axis=1)]) / 2
+        offset = numpy.linalg.norm(points[cells[:, 4:]] - middle, axis=2).max()
+        self.assertLess(offset, 0.05 * 0.2)
+
+    def test_ninety_thousand_quads_into_a_femmesh(self):
+        face = shared_face("plate_with_hole")
+        mesh = _medialmesh.mesh(face.exportBrepToString(), 0.0107, order=1)
+        start = time.perf_counter()
+        femmesh = meshing.build_femmesh(mesh["nodes"], mesh["elements"])
+        seconds = time.perf_counter() - start
+        sys.__stdout__.write(f"\n{femmesh.FaceCount} quads into a FemMesh in {seconds:.2f} s\n")
+        self.assertGreater(femmesh.FaceCount, 85000)
+        self.assertEqual(femmesh.NodeCount, len(mesh["nodes"]))
+        self.assertLess(seconds, 3.0)
+
+    def test_bad_input_names_the_problem(self):
+        cylinder = Part.makeCylinder(1, 2)
+        side = next(f for f in cylinder.Faces if isinstance(f.Surface, Part.Cylinder))
+        with self.assertRaisesRegex(MedialMesh.InputError, "side.*planar"):
+            MedialMesh.mesh_face(side, name="side")
+        with self.assertRaisesRegex(MedialMesh.InputError, "order"):
+            MedialMesh.mesh_face(shared_face("square"), order=3)
+        with self.assertRaisesRegex(MedialMesh.InputError, "merge factor"):
+            MedialMesh.mesh_face(shared_face("square"), merge=3)
+        with self.assertRaisesRegex(MedialMesh.InputError, "Part.Face"):
+            MedialMesh.mesh_face("not a face")
+
+    def test_a_quad_with_two_corners_at_one_point_is_refused(self):
+        import numpy
+
+        nodes = numpy.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 1, 0]])
+        meshing.check_corners_distinct(nodes, numpy.array([[0, 1, 2, 3]]), ["square"])
+        with self.assertRaisesRegex(MedialMesh.SelfCheckError, r"square: .*1 quads have two corners at one point"):
+            meshing.check_corners_distinct(nodes, numpy.array([[0, 1, 2, 3], [0, 1, 3, 4]]), ["square"])
+
+    def test_two_faces(self):
+        # Two halves of a rectangle sharing the edge x = 1.
+        left, right = Part.makePlane(1, 1), Part.makePlane(1, 1, FreeCAD.Vector(1, 0, 0))
+        if not hasattr(_medialmesh, "mesh_faces"):
+            with self.assertRaisesRegex(MedialMesh.InputError, "mesh_faces"):
+                MedialMesh.mesh_face([left, right], size=0.25)
+            return
+        result = MedialMesh.mesh_face([left, right], size=0.25)
+        self.check_quads(result.femmesh, 1)
+        self.assertEqual(len(result.per_face), 2)
+        shared = [p for p in result.femmesh.Nodes.values() if abs(p.x - 1) < TOLERANCE]
+        self.assertEqual(len(shared), len({(round(p.y, 9), round(p.z, 9)) for p in shared}))  # no duplicates
+
+
+class TestMeshObject(unittest.TestCase):
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MedialMeshQuadMesh")
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def check(self, mesh_obj, face, order=1):
+        """The object is meshed, holds only quads on the face, and its results agree."""
+        self.assertEqual(mesh_obj.Status, "ok")
+        self.assertEqual(mesh_obj.Type, "MedialMesh::QuadMesh")
+        femmesh = mesh_obj.FemMesh
+        self.assertEqual(femmesh.QuadrangleCount, femmesh.FaceCount)
+        self.assertEqual(femmesh.TriangleCount, 0)
+        per_element = 4 if order == 1 else 8
+        self.assertTrue(all(len(nodes) == per_element for nodes in element_nodes(femmesh)))
+        self.assertEqual((mesh_obj.QuadCount, mesh_obj.NodeCount), (femmesh.FaceCount, femmesh.NodeCount))
+        self.assertGreater(mesh_obj.MinScaledJacobian, 0.3)
+        self.assertGreaterEqual(mesh_obj.MeanScaledJacobian, mesh_obj.MinScaledJacobian)
+        self.assertGreater(mesh_obj.Seconds, 0.0)
+        self.assertLess(max_distance_off(face, femmesh), TOLERANCE)
+        sketch = mesh_obj.Sketch
+        self.assertEqual(sketch.TypeId, "Sketcher::SketchObject")
+        for edge in sketch.Shape.Edges:
+            self.assertLess(face.distToShape(edge)[0], TOLERANCE)
+
+    def test_in_the_analysis_and_follows_its_parameters(self):
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("plate_with_hole")
+        fem_analysis = ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        self.doc.recompute()
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, plate, "Face1", size=0.4)
+        self.assertIn(mesh_obj, fem_analysis.Group)  # the document's only analysis
+        self.assertEqual(mesh_obj.TypeId, "Fem::FemMeshObjectPython")
+        self.assertEqual(mesh_obj.Part, plate)
+        face = plate.Shape.Faces[0]
+        self.check(mesh_obj, face)
+        self.assertEqual(len(mesh_obj.Sketch.Geometry), 4)  # the four straight splits
+        self.assertEqual(mesh_obj.IrregularNodes, 4)
+        coarse = mesh_obj.QuadCount
+
+        mesh_obj.ElementSize = 0.2
+        self.doc.recompute()
+        self.check(mesh_obj, face)
+        self.assertGreater(mesh_obj.QuadCount, 2 * coarse)
+        fine = mesh_obj.QuadCount
+
+        mesh_obj.ElementOrder = "2nd"
+        self.doc.recompute()
+        self.check(mesh_obj, face, order=2)
+        self.assertEqual(mesh_obj.QuadCount, fine)
+
+        mesh_obj.Smoothing = False
+        self.doc.recompute()
+        self.check(mesh_obj, face, order=2)
+        self.assertNotIn("Touched", mesh_obj.State)
+        self.assertNotIn("Touched", mesh_obj.Sketch.State)
+
+    def test_analysis_argument_and_several_analyses(self):
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("square")
+        first = ObjectsFem.makeAnalysis(self.doc, "First")
+        second = ObjectsFem.makeAnalysis(self.doc, "Second")
+        self.doc.recompute()
+        loose = MedialMesh.make_mesh_object(self.doc, plate, "Face1")
+        self.assertNotIn(loose, first.Group + second.Group)  # two analyses and none named: neither
+        placed = MedialMesh.make_mesh_object(self.doc, plate, "Face1", analysis=second)
+        self.assertIn(placed, second.Group)
+        self.check(placed, plate.Shape.Faces[0])
+
+    def test_recomputes_when_the_face_changes(self):
+        body, pad, radius = plate_body(self.doc)
+        subname = top_face_name(pad)
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, pad, subname, size=0.25)
+        self.check(mesh_obj, analysis.global_face(pad, subname))
+        before = mesh_obj.FemMesh.NodeCount
+        self.doc.getObject("Sketch").setDatum(radius, FreeCAD.Units.Quantity("0.5 mm"))
+        self.doc.recompute()
+        self.check(mesh_obj, analysis.global_face(pad, subname))
+        self.assertNotEqual(mesh_obj.FemMesh.NodeCount, before)
+
+    def test_body_inside_a_placed_app_part(self):
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.Placement = FreeCAD.Placement(FreeCAD.Vector(100, -20, 7),
+                                                FreeCAD.Rotation(FreeCAD.Vector(0, 1, 1), 70))
+        body, pad, radius = plate_body(self.doc)
+        container.addObject(body)
+        self.doc.recompute()
+        subname = top_face_name(pad)
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, pad, subname, size=0.4)
+        # the face as seen: the container's and the body's placements on the pad's shape
+        seen = pad.Shape.getElement(subname).copy()
+        seen.Placement = container.Placement.multiply(body.Placement).multiply(seen.Placement)
+        self.check(mesh_obj, seen)
+        unplaced = pad.Shape.getElement(subname)
+        self.assertGreater(max_distance_off(unplaced, mesh_obj.FemMesh), 1.0)
+
+    def test_sketch_face_and_imported_step(self):
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Profile")
+        corners = [FreeCAD.Vector(x, y, 0) for x, y in ((0, 0), (3, 0), (3, 1), (1, 1), (1, 2), (0, 2))]  # an L
+        for a, b in zip(corners, corners[1:] + corners[:1]):
+            sketch.addGeometry(Part.LineSegment(a, b))
+        sketch.Placement = PLACEMENT
+        face = self.doc.addObject("Part::Face", "Face")
+        face.Sources = [sketch]
+        self.doc.recompute()
+        from_sketch = MedialMesh.make_mesh_object(self.doc, face, "Face1", size=0.3)
+        self.check(from_sketch, face.Shape.Faces[0])
+
+        path = os.path.join(tempfile.mkdtemp(), "plate.step")
+        plate = shared_face("plate_with_hole")
+        plate.Placement = PLACEMENT
+        plate.exportStep(path)
+        import Import
+
+        Import.insert(path, self.doc.Name)
+        imported = self.doc.Objects[-1]
+        self.doc.recompute()
+        from_step = MedialMesh.make_mesh_object(self.doc, imported, "Face1", size=0.3)
+        self.check(from_step, analysis.global_face(imported, "Face1"))
+        self.assertLess(max_distance_off(plate, from_step.FemMesh), TOLERANCE)
+
+    def test_saves_and_reopens(self):
+        body, pad, radius = plate_body(self.doc)
+        subname = top_face_name(pad)
+        ObjectsFem.makeAnalysis(self.doc, "Analysis")
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, pad, subname, size=0.3, order=2, merge=0.5)
+        counts = (mesh_obj.QuadCount, mesh_obj.NodeCount)
+        name, sketch_name = mesh_obj.Name, mesh_obj.Sketch.Name
+        path = os.path.join(tempfile.mkdtemp(), "quadmesh.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        reopened = self.doc.getObject(name)
+        self.assertEqual(reopened.Type, "MedialMesh::QuadMesh")
+        self.assertEqual((reopened.MergeFactor, reopened.ElementOrder), (0.5, "2nd"))
+        self.assertEqual(reopened.Sketch.Name, sketch_name)
+        self.assertEqual((reopened.FemMesh.FaceCount, reopened.FemMesh.NodeCount), counts)  # the mesh was saved
+        self.assertIn(reopened, self.doc.getObject("Analysis").Group)
+        face = analysis.global_face(reopened.Source[0][0], subname)
+        self.check(reopened, face, order=2)
+        reopened.touch()
+        self.doc.recompute()  # the proxy came back with the document
+        self.check(reopened, face, order=2)
+        self.assertEqual((reopened.QuadCount, reopened.NodeCount), counts)
+        self.assertTrue(reopened.isValid())
+
+    def test_bad_face_reports_and_keeps_freecad_going(self):
+        cylinder = self.doc.addObject("Part::Cylinder", "Cylinder")
+        self.doc.recompute()
+        side = next(f"Face{i + 1}" for i, f in enumerate(cylinder.Shape.Faces)
+                    if isinstance(f.Surface, Part.Cylinder))
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, cylinder, side)
+        self.assertIn("Cylinder." + side, mesh_obj.Status)
+        self.assertIn("planar", mesh_obj.Status)
+        self.assertEqual(mesh_obj.FemMesh.NodeCount, 0)
+        self.assertEqual(mesh_obj.QuadCount, 0)
+        self.assertEqual(len(mesh_obj.Sketch.Geometry), 0)
+        # a good face again: the object recovers
+        top = next(f"Face{i + 1}" for i, f in enumerate(cylinder.Shape.Faces)
+                   if isinstance(f.Surface, Part.Plane))
+        mesh_obj.Source = [(cylinder, [top])]
+        self.doc.recompute()
+        self.check(mesh_obj, cylinder.Shape.getElement(top))
+
+    def test_bad_arguments_raise_before_creating_anything(self):
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("square")
+        count = len(self.doc.Objects)
+        with self.assertRaisesRegex(MedialMesh.InputError, "order"):
+            MedialMesh.make_mesh_object(self.doc, plate, "Face1", order=3)
+        with self.assertRaisesRegex(MedialMesh.InputError, "no face"):
+            MedialMesh.make_mesh_object(self.doc, plate, [])
+        self.assertEqual(len(self.doc.Objects), count)
+
+    def test_faces_of_several_objects(self):
+        left = self.doc.addObject("Part::Feature", "Left")
+        left.Shape = Part.makePlane(1, 1)
+        right = self.doc.addObject("Part::Feature", "Right")
+        right.Shape = Part.makePlane(1, 1, FreeCAD.Vector(1, 0, 0))
+        self.doc.recompute()
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, [(left, "Face1"), (right, "Face1")], None, size=0.25)
+        self.assertEqual([(o.Name, list(s)) for o, s in mesh_obj.Source], [("Left", ["Face1"]), ("Right", ["Face1"])])
+        if hasattr(_medialmesh, "mesh_faces"):
+            self.assertEqual(mesh_obj.Status, "ok")
+            self.assertEqual(mesh_obj.QuadCount, mesh_obj.FemMesh.QuadrangleCount)
+        else:
+            self.assertIn("mesh_faces", mesh_obj.Status)
+            self.assertEqual(mesh_obj.FemMesh.NodeCount, 0)
+
+
+if __name__ == "__main__":
+    unittest.main()
