@@ -8,7 +8,6 @@ from typing import List, Tuple
 
 import Fem
 import FreeCAD
-import numpy
 import Part
 
 import _medialmesh
@@ -66,22 +65,6 @@ def build_femmesh(nodes, elements):
     for element_id, element in enumerate((elements + 1).tolist(), 1):
         add_face(element, element_id)
     return femmesh
-
-
-def check_corners_distinct(nodes, elements, names):
-    """Raise SelfCheckError when a quad has two corners at one point (a
-    solver cannot use it, and the quality report does not see it)."""
-    corners = nodes[elements[:, :4]]
-    pairs = [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3)]
-    lengths = numpy.stack([numpy.linalg.norm(corners[:, a] - corners[:, b], axis=1) for a, b in pairs], axis=1)
-    scale = numpy.linalg.norm(nodes.max(axis=0) - nodes.min(axis=0))
-    bad = numpy.flatnonzero(lengths.min(axis=1) <= 1e-9 * scale)
-    if len(bad):
-        first = bad[0]
-        x, y, z = corners[first, pairs[int(numpy.argmin(lengths[first]))][0]]
-        raise _medialmesh.SelfCheckError(
-            f"{', '.join(names)}: self-check failed: {len(bad)} quads have two corners at one point, "
-            f"the first (element {first + 1}) at ({x:.6g}, {y:.6g}, {z:.6g})")
 
 
 def _quality(report):
@@ -158,7 +141,6 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
         per_face = [_face_part(n, f, r["report"], r["decomposition"])
                     for n, f, r in zip(names, faces, result["faces"])]
 
-    check_corners_distinct(result["nodes"], result["elements"], names)
     femmesh = build_femmesh(result["nodes"], result["elements"])
     quality = _quality(result["report"])
     quality["seconds"] = time.perf_counter() - start
