@@ -24,10 +24,18 @@ class ViewProviderMedialAnalysis:
 
     def attach(self, vobj):
         self.object = vobj.Object
-        # The singularity marks ride along in every display mode.
+        # The singularity marks ride along in every display mode. They sit
+        # beside FreeCAD's display mode switch, which hiding the object turns
+        # off, so they need a switch of their own (see onChanged).
         self.marks = coin.SoSeparator()
-        vobj.RootNode.addChild(self.marks)
+        self.marks_shown = coin.SoSwitch()
+        self.marks_shown.addChild(self.marks)
+        vobj.RootNode.addChild(self.marks_shown)
+        self.show_marks(vobj)
         self.draw_marks(vobj.Object)
+
+    def show_marks(self, vobj):
+        self.marks_shown.whichChild = coin.SO_SWITCH_ALL if vobj.Visibility else coin.SO_SWITCH_NONE
 
     def updateData(self, obj, prop):
         try:
@@ -63,7 +71,8 @@ class ViewProviderMedialAnalysis:
             self.marks.addChild(mark)
 
     def onChanged(self, vobj, prop):
-        pass
+        if prop == "Visibility" and hasattr(self, "marks_shown"):
+            self.show_marks(vobj)
 
     def getIcon(self):
         return os.path.join(ICON_FOLDER, "MedialMesh_Analyse.svg")
