@@ -102,5 +102,72 @@ class CommandDecompose(FaceCommand):
                 f"{obj.SubmapBlocks} submapped), {obj.FixedCount} fixed singularities")
 
 
+class CommandQuadMesh:
+    """Mesh the selected planar faces together into one parametric quad mesh,
+    put it into the active FEM Analysis and open its task panel, as FreeCAD's
+    Gmsh command does (femcommands/commands.py, _MeshGmshFromShape)."""
+
+    name = "Quad mesh"
+
+    def GetResources(self):
+        return {
+            "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_QuadMesh.svg"),
+            "MenuText": "Quad mesh",
+            "ToolTip": "Mesh the selected planar faces together with quads into one FEM mesh object, "
+            "put into the active Analysis; set its parameters in the task panel",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in selected_faces())
+
+    def Activated(self):
+        # Runs from a toolbar: nothing may escape into FreeCAD.
+        try:
+            self.run_on_selection()
+        except Exception as error:
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
+
+    def run_on_selection(self):
+        if FreeCADGui.Control.activeDialog():
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: close the open task dialog first\n")
+            return
+        doc = FreeCAD.ActiveDocument
+        faces = []
+        for obj, subname, face in selected_faces():
+            if is_planar(face):
+                faces.append((obj, subname))
+            else:
+                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar; "
+                                           "left out of the quad mesh\n")
+        if not faces:
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: no planar face selected\n")
+            return
+        import FemGui
+
+        analysis = FemGui.getActiveAnalysis()
+        if analysis is not None and analysis.Document != doc:
+            analysis = None
+        # The task panel ends this transaction: OK commits it, Cancel aborts
+        # it and so takes the new object back (see taskpanels).
+        doc.openTransaction(self.name)
+        try:
+            if len({obj.Name for obj, _ in faces}) == 1:
+                mesh = objects.make_mesh_object(doc, faces[0][0], [subname for _, subname in faces],
+                                                analysis=analysis)
+            else:
+                mesh = objects.make_mesh_object(doc, faces, None, analysis=analysis)
+        except Exception:
+            doc.abortTransaction()
+            raise
+        FreeCADGui.Selection.clearSelection()
+        if mesh.Status == "ok":
+            FreeCAD.Console.PrintMessage(f"MedialMesh: {mesh.Label}: {mesh.QuadCount} quads\n")
+        mesh.ViewObject.Proxy.just_created = True
+        if not FreeCADGui.getDocument(doc.Name).setEdit(mesh.Name, 0):
+            mesh.ViewObject.Proxy.just_created = False
+            doc.commitTransaction()  # no panel: the object stays, as made
+
+
 FreeCADGui.addCommand("MedialMesh_Analyse", CommandAnalyse())
 FreeCADGui.addCommand("MedialMesh_Decompose", CommandDecompose())
+FreeCADGui.addCommand("MedialMesh_QuadMesh", CommandQuadMesh())
