@@ -167,10 +167,7 @@ class QuadMeshTaskPanel:
     def show_object_results(self):
         obj = self.obj
         if obj.Status == "ok":
-            self.show_message("Current mesh: " + quality_text({
-                "quads": obj.QuadCount, "nodes": obj.NodeCount, "min_scaled_jacobian": obj.MinScaledJacobian,
-                "mean_scaled_jacobian": obj.MeanScaledJacobian, "irregular_nodes": obj.IrregularNodes,
-                "seconds": obj.Seconds}))
+            self.show_message("Current mesh: " + quality_text(self.object_quality()))
         else:
             self.show_message(f"Current mesh: {obj.Status or 'not computed'}", error=bool(obj.Status))
 
