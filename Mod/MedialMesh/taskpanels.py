@@ -48,10 +48,11 @@ def linked_faces(obj):
     return faces, ",".join(names)
 
 
-def quality_text(quality):
-    return (f"{quality['quads']} quads, {quality['nodes']} nodes, scaled Jacobian min "
-            f"{quality['min_scaled_jacobian']:.3f} mean {quality['mean_scaled_jacobian']:.3f}, "
-            f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s")
+def quality_text(quality, separator=", "):
+    return separator.join((
+        f"{quality['quads']} quads, {quality['nodes']} nodes",
+        f"scaled Jacobian min {quality['min_scaled_jacobian']:.3f} mean {quality['mean_scaled_jacobian']:.3f}",
+        f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s"))
 
 
 class QuadMeshTaskPanel:
@@ -119,6 +120,10 @@ class QuadMeshTaskPanel:
         self.smooth.setObjectName("smoothing")
         self.smooth.setToolTip("Smooth the nodes inside each block")
         rows.addRow(self.smooth)
+        # The task view is often narrower than the fields' size hints (the
+        # length field's allows for huge numbers): let them shrink to it.
+        for field in (self.size, self.merge, self.order):
+            field.setMinimumWidth(60)
         layout.addWidget(parameters)
 
         preview = QtGui.QGroupBox("Preview")
@@ -167,7 +172,7 @@ class QuadMeshTaskPanel:
     def show_object_results(self):
         obj = self.obj
         if obj.Status == "ok":
-            self.show_message("Current mesh: " + quality_text(self.object_quality()))
+            self.show_message("Current mesh:\n" + quality_text(self.object_quality(), "\n"))
         else:
             self.show_message(f"Current mesh: {obj.Status or 'not computed'}", error=bool(obj.Status))
 
@@ -259,7 +264,7 @@ class QuadMeshTaskPanel:
             return
         result = self.outcome["result"]
         self.show_preview(self.outcome["geometry"])
-        text = "Preview: " + quality_text(result.quality)
+        text = "Preview:\n" + quality_text(result.quality, "\n")
         if result.notes:
             text += "\n" + "\n".join(result.notes)
         self.show_message(text)
