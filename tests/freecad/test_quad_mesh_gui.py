@@ -20,7 +20,7 @@ import Part
 from pivy import coin
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from MedialMesh import analysis, objects
+from MedialMesh import analysis, decomposition, objects
 from test_analyse_gui import PLACEMENT, colour_count
 
 OUTPUT = os.path.join(os.environ["MEDIALMESH_BUILD_DIR"], "test-output")
@@ -197,7 +197,8 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertFalse(mesh.ViewObject.Visibility)  # it stands in for the object meanwhile
         self.cylinder.ViewObject.Visibility = False
         self.look_at_plate(view)
-        view.saveImage(os.path.join(OUTPUT, "quad_mesh_gui_preview.png"), *SIZE, "White")
+        preview_picture = os.path.join(OUTPUT, "quad_mesh_gui_preview.png")
+        view.saveImage(preview_picture, *SIZE, "White")
 
         press(QtWidgets.QDialogButtonBox.Ok)
         self.assertFalse(FreeCADGui.Control.activeDialog())
@@ -227,6 +228,10 @@ class TestQuadMeshCommand(unittest.TestCase):
         # A row across the plate crosses about sqrt(quads) element edges.
         self.assertGreater(with_mesh, without + 0.5 * len(rows) * previewed**0.5,
                            f"{with_mesh} edge crossings with the mesh, {without} without")
+        # The preview showed the same mesh, and the four splits from the hole to the sides.
+        preview_image = QtGui.QImage(preview_picture)
+        self.assertGreater(dark_transitions(preview_image, rows), without + 0.5 * len(rows) * previewed**0.5)
+        self.assertGreater(colour_count(preview_image, decomposition.SPLIT_COLOUR), 200)
 
         # Double click opens the panel on the object made; 2nd order there gives 8-node quads.
         self.assertTrue(mesh.ViewObject.doubleClicked())
