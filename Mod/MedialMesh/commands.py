@@ -102,6 +102,20 @@ class CommandDecompose(FaceCommand):
                 f"{obj.SubmapBlocks} submapped), {obj.FixedCount} fixed singularities")
 
 
+def selected_faces_and_sheets():
+    """selected_faces(), and every face of an object picked whole (in the
+    tree) whose shape is faces without a solid: a face made from a sketch, a
+    plane, an imported sheet. A solid picked whole gives nothing: which of
+    its faces is meant is not known."""
+    faces = selected_faces()
+    for selection in FreeCADGui.Selection.getSelectionEx():
+        shape = getattr(selection.Object, "Shape", None)
+        if selection.SubElementNames or not isinstance(shape, Part.Shape) or shape.isNull() or shape.Solids:
+            continue
+        faces.extend((selection.Object, f"Face{i}", face) for i, face in enumerate(shape.Faces, 1))
+    return faces
+
+
 class CommandQuadMesh:
     """Mesh the selected planar faces together into one parametric quad mesh,
     put it into the active FEM Analysis and open its task panel, as FreeCAD's
@@ -113,12 +127,13 @@ class CommandQuadMesh:
         return {
             "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_QuadMesh.svg"),
             "MenuText": "Quad mesh",
-            "ToolTip": "Mesh the selected planar faces together with quads into one FEM mesh object, "
-            "put into the active Analysis; set its parameters in the task panel",
+            "ToolTip": "Mesh the selected planar faces (or face objects picked in the tree) together with "
+            "quads into one FEM mesh object, put into the active Analysis; set its parameters in the task panel",
         }
 
     def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in selected_faces())
+        return FreeCAD.ActiveDocument is not None and any(
+            is_planar(face) for _, _, face in selected_faces_and_sheets())
 
     def Activated(self):
         # Runs from a toolbar: nothing may escape into FreeCAD.
@@ -133,7 +148,7 @@ class CommandQuadMesh:
             return
         doc = FreeCAD.ActiveDocument
         faces = []
-        for obj, subname, face in selected_faces():
+        for obj, subname, face in selected_faces_and_sheets():
             if is_planar(face):
                 faces.append((obj, subname))
             else:

@@ -286,6 +286,18 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertEqual(panel_widget("faces").text(), "Plate.Face1, Cylinder.Face2")
         press(QtWidgets.QDialogButtonBox.Ok)
 
+    def test_face_object_picked_in_the_tree(self):
+        sheet = self.doc.addObject("Part::Plane", "Sheet")
+        sheet.Placement.Base = FreeCAD.Vector(0, 30, 0)
+        self.doc.recompute()
+        command = FreeCADGui.Command.get("MedialMesh_QuadMesh")
+        self.select((self.cylinder, ""))  # a solid picked whole: which face is meant?
+        self.assertFalse(command.isActive())
+        mesh = self.run_quad_mesh((sheet, ""))
+        self.assertEqual(mesh.Source, [(sheet, ("Face1",))])
+        self.assertEqual(mesh.Status, "ok")
+        press(QtWidgets.QDialogButtonBox.Ok)
+
     def test_preview_error_names_object_and_face(self):
         # A macro can link a face the command would not take.
         mesh = objects.make_mesh_object(self.doc, self.cylinder, "Face1", analysis=self.analysis)
