@@ -298,6 +298,28 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertEqual(mesh.Status, "ok")
         press(QtWidgets.QDialogButtonBox.Ok)
 
+    def test_deleting_the_mesh_deletes_its_sketch(self):
+        mesh = objects.make_mesh_object(self.doc, self.plate, "Face1", analysis=self.analysis)
+        names = (mesh.Name, mesh.Sketch.Name)
+        self.select((mesh, ""))
+        questions = []  # a question would stop the test: answer it, and fail
+
+        def answer():
+            for widget in QtWidgets.QApplication.topLevelWidgets():
+                if isinstance(widget, QtWidgets.QMessageBox) and widget.isVisible():
+                    questions.append(widget.text())
+                    widget.reject()
+
+        guard = QtCore.QTimer()
+        guard.timeout.connect(answer)
+        guard.start(200)
+        FreeCADGui.runCommand("Std_Delete")
+        FreeCADGui.updateGui()
+        guard.stop()
+        self.assertEqual(questions, [])
+        self.assertEqual([n for n in names if self.doc.getObject(n)], [])
+        self.assertNotIn(names[0], [o.Name for o in self.analysis.Group])
+
     def test_preview_error_names_object_and_face(self):
         # A macro can link a face the command would not take.
         mesh = objects.make_mesh_object(self.doc, self.cylinder, "Face1", analysis=self.analysis)
