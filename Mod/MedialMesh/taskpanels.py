@@ -30,9 +30,9 @@ from . import analysis, decomposition, viewproviders
 
 PREVIEW_FACE_COLOUR = (0.82, 0.88, 1.0)
 PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
-# A preview bigger than this (in estimated quads) would take minutes and
+# A mesh bigger than this (in estimated quads) would take minutes and
 # gigabytes; the panel refuses it with a message rather than hang.
-MAX_PREVIEW_QUADS = 2_000_000
+MAX_QUADS = 2_000_000
 SHOW_PROGRESS_AFTER = 1.0  # seconds: shorter runs just finish
 NO_MERGING = 0.2  # the merge factor field's minimum, which stands for 0: no merging
 
@@ -46,6 +46,17 @@ def linked_faces(obj):
             faces.append(analysis.global_face(source, subname))
             names.append(f"{source.Label}.{subname}")
     return faces, ",".join(names)
+
+
+def too_many_quads(faces, size, names):
+    """Why meshing the faces with this element size is refused, or None."""
+    if size <= 0:
+        return None  # automatic: some 400 quads a face
+    estimate = sum(face.Area for face in faces) / size**2
+    if estimate <= MAX_QUADS:
+        return None
+    return (f"{names}: element size {size:g} mm gives about {estimate:.3g} quads; "
+            f"choose a larger size (at most {MAX_QUADS} quads)")
 
 
 def quality_text(quality, separator=", "):
@@ -207,12 +218,10 @@ class QuadMeshTaskPanel:
             return
         values = self.values()
         size = values["ElementSize"]
-        if size > 0:
-            estimate = sum(face.Area for face in faces) / size**2
-            if estimate > MAX_PREVIEW_QUADS:
-                self.report_error(f"{names}: element size {size:g} mm gives about {estimate:.3g} quads; "
-                                  f"choose a larger size (at most {MAX_PREVIEW_QUADS} quads previewed)")
-                return
+        too_many = too_many_quads(faces, size, names)
+        if too_many:
+            self.report_error(too_many)
+            return
         from .meshing import mesh_face
 
         arguments = dict(size=size or None, order=2 if values["ElementOrder"] == "2nd" else 1,
@@ -316,6 +325,14 @@ class QuadMeshTaskPanel:
         return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
 
     def accept(self):
+        try:
+            faces, names = linked_faces(self.obj)
+            too_many = too_many_quads(faces, self.values()["ElementSize"], names)
+        except Exception:  # no faces: the object's recompute says why
+            too_many = None
+        if too_many:  # the panel stays open for a larger size
+            self.report_error(too_many)
+            return False
         try:
             self.clean_up()
             self.apply()

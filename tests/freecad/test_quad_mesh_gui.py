@@ -320,6 +320,23 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertEqual([n for n in names if self.doc.getObject(n)], [])
         self.assertNotIn(names[0], [o.Name for o in self.analysis.Group])
 
+    def test_a_size_giving_millions_of_quads_is_refused(self):
+        sheet = self.doc.addObject("Part::Plane", "BigSheet")
+        sheet.Length = sheet.Width = 2000
+        sheet.Placement.Base = FreeCAD.Vector(0, -3000, 0)
+        self.doc.recompute()
+        mesh = objects.make_mesh_object(self.doc, sheet, "Face1", analysis=self.analysis)
+        quads = mesh.QuadCount
+        self.assertTrue(FreeCADGui.getDocument(self.doc.Name).setEdit(mesh.Name, 0))
+        panel_widget("elementSize").setProperty("rawValue", 1.0)  # some 4 million quads
+        text = self.preview()
+        self.assertIn("BigSheet.Face1: element size 1 mm gives about 4e+06 quads", text)
+        press(QtWidgets.QDialogButtonBox.Ok)  # refused: the panel stays
+        self.assertTrue(FreeCADGui.Control.activeDialog())
+        self.assertEqual((mesh.ElementSize.Value, mesh.QuadCount), (0.0, quads))
+        press(QtWidgets.QDialogButtonBox.Cancel)
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+
     def test_preview_error_names_object_and_face(self):
         # A macro can link a face the command would not take.
         mesh = objects.make_mesh_object(self.doc, self.cylinder, "Face1", analysis=self.analysis)
