@@ -177,10 +177,15 @@ class CommandQuadMesh:
         FreeCADGui.Selection.clearSelection()
         if mesh.Status == "ok":
             FreeCAD.Console.PrintMessage(f"MedialMesh: {mesh.Label}: {mesh.QuadCount} quads\n")
-        mesh.ViewObject.Proxy.just_created = True
-        if not FreeCADGui.getDocument(doc.Name).setEdit(mesh.Name, 0):
-            mesh.ViewObject.Proxy.just_created = False
-            doc.commitTransaction()  # no panel: the object stays, as made
+        opened = False
+        try:
+            mesh.ViewObject.Proxy.just_created = True
+            opened = FreeCADGui.getDocument(doc.Name).setEdit(mesh.Name, 0)
+        finally:
+            if not opened:  # no panel to end the transaction: the object stays, as made
+                doc.commitTransaction()
+                if hasattr(mesh.ViewObject.Proxy, "just_created"):
+                    mesh.ViewObject.Proxy.just_created = False
 
 
 FreeCADGui.addCommand("MedialMesh_Analyse", CommandAnalyse())

@@ -165,12 +165,13 @@ class ViewProviderMedialQuadMesh:
 
         try:
             self.panel = taskpanels.QuadMeshTaskPanel(vobj.Object, created=self.just_created)
-        except Exception as error:  # the panel cannot be built: say so, do not enter edit mode
-            FreeCAD.Console.PrintError(f"MedialMesh: {vobj.Object.Label}: cannot open the task panel: {error!r}\n")
+            FreeCADGui.Control.showDialog(self.panel)
+        except Exception as error:  # another dialog is open, ...: say so, do not enter edit mode
+            FreeCAD.Console.PrintError(f"MedialMesh: {vobj.Object.Label}: cannot open the task panel: {error}\n")
+            self.panel = None
             return False
         finally:
             self.just_created = False
-        FreeCADGui.Control.showDialog(self.panel)
         return True
 
     def unsetEdit(self, vobj, mode=0):

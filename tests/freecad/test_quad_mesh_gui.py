@@ -59,6 +59,7 @@ def press(button):
 
 
 def report_view_text():
+    FreeCADGui.updateGui()  # the report view shows messages from its event queue
     return "\n".join(w.toPlainText() for w in FreeCADGui.getMainWindow().findChildren(QtWidgets.QTextEdit)
                      if w.objectName() == "Report view")
 
@@ -334,6 +335,21 @@ class TestQuadMeshCommand(unittest.TestCase):
         press(QtWidgets.QDialogButtonBox.Ok)  # refused: the panel stays
         self.assertTrue(FreeCADGui.Control.activeDialog())
         self.assertEqual((mesh.ElementSize.Value, mesh.QuadCount), (0.0, quads))
+        press(QtWidgets.QDialogButtonBox.Cancel)
+        self.assertFalse(FreeCADGui.Control.activeDialog())
+
+    def test_one_panel_at_a_time(self):
+        first = objects.make_mesh_object(self.doc, self.plate, "Face1", analysis=self.analysis)
+        second = objects.make_mesh_object(self.doc, self.plate, "Face1", analysis=self.analysis)
+        self.assertTrue(first.ViewObject.doubleClicked())
+        self.assertTrue(second.ViewObject.doubleClicked())  # refused: a line in the report view
+        self.assertIn(f"MedialMesh: {second.Label}: close the open task dialog", report_view_text())
+        self.assertFalse(second.ViewObject.Proxy.panel)
+        before = len(self.doc.Objects)
+        self.select((self.plate, "Face1"))
+        FreeCADGui.runCommand("MedialMesh_QuadMesh")  # refused too
+        self.assertEqual(len(self.doc.Objects), before)
+        self.assertIn("MedialMesh: Quad mesh: close the open task dialog first", report_view_text())
         press(QtWidgets.QDialogButtonBox.Cancel)
         self.assertFalse(FreeCADGui.Control.activeDialog())
 
