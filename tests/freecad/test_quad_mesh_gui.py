@@ -398,6 +398,8 @@ class TestQuadMeshCommand(unittest.TestCase):
     def test_saved_and_reopened(self):
         doc = FreeCAD.newDocument("QuadMeshSaved")
         path = os.path.join(OUTPUT, "quad_mesh_gui_saved.FCStd")
+        if os.path.exists(path):  # FreeCAD would keep the old one as a backup
+            os.remove(path)
         try:
             plate = doc.addObject("Part::Feature", "Plate")
             plate.Shape = self.plate.Shape
