@@ -7,15 +7,18 @@ the linked faces with the panel's values in a worker thread (the core lets go
 of the GIL while it meshes, so the GUI keeps drawing) and shows the mesh and
 the decomposition splits in the 3D view as a Coin node of the view, not of the
 document; the object itself is hidden meanwhile. Nothing in the document
-changes before OK.
+changes before OK. OK and Cancel wait for a running preview to finish: the
+core cannot be stopped, and FreeCAD's meshes must not be built in two threads
+at once.
 
 OK writes the values that changed into the object and recomputes, in one
 transaction. Cancel leaves the document as it was. When the Quad mesh command
 opened the panel on the object it had just made (created=True), that object
 is part of what Cancel takes back: the command's transaction is still open
-and Cancel aborts it, as PartDesign's feature panels do, so the object, its
-Sketch and its place in the Analysis go and the undo stack is as before; OK
-commits it as one undo step.
+and Cancel aborts it (before resetEdit, which would commit it), as
+PartDesign's feature panels do, so the object, its Sketch and its place in
+the Analysis go and the undo stack is as before; OK commits it as one undo
+step.
 """
 
 import threading
@@ -77,7 +80,7 @@ class QuadMeshTaskPanel:
         self.doc = obj.Document
         self.created = created
         self.worker = None  # the preview's thread while it runs
-        self.outcome = {}  # what the worker left: 'result' or 'error'
+        self.outcome = {}  # the preview's face names, and what the worker left: 'result' and 'geometry', or 'error'
         self.started = 0.0
         self.preview_root = None  # (scene graph, node) of the preview shown
         self.hidden_object = False  # the object hidden to show the preview
