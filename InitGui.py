@@ -27,7 +27,7 @@ class MedialMeshWorkbench(Workbench):
         except ImportError as error:  # the compiled core is not built yet
             FreeCAD.Console.PrintError(f"MedialMesh: {error}\n")
             return
-        commands = ["MedialMesh_Analyse", "MedialMesh_Decompose"]
+        commands = ["MedialMesh_Analyse", "MedialMesh_Decompose", "MedialMesh_QuadMesh"]
         self.appendToolbar("MedialMesh", commands)
         self.appendMenu("MedialMesh", commands)
 

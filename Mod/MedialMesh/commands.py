@@ -102,5 +102,92 @@ class CommandDecompose(FaceCommand):
                 f"{obj.SubmapBlocks} submapped), {obj.FixedCount} fixed singularities")
 
 
+def selected_faces_and_sheets():
+    """selected_faces(), and every face of an object picked whole (in the
+    tree) whose shape is faces without a solid: a face made from a sketch, a
+    plane, an imported sheet. A solid picked whole gives nothing: which of
+    its faces is meant is not known."""
+    faces = selected_faces()
+    for selection in FreeCADGui.Selection.getSelectionEx():
+        shape = getattr(selection.Object, "Shape", None)
+        if selection.SubElementNames or not isinstance(shape, Part.Shape) or shape.isNull() or shape.Solids:
+            continue
+        faces.extend((selection.Object, f"Face{i}", face) for i, face in enumerate(shape.Faces, 1))
+    return faces
+
+
+class CommandQuadMesh:
+    """Mesh the selected planar faces together into one parametric quad mesh,
+    put it into the active FEM Analysis and open its task panel, as FreeCAD's
+    Gmsh command does (femcommands/commands.py, _MeshGmshFromShape)."""
+
+    name = "Quad mesh"
+
+    def GetResources(self):
+        return {
+            "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_QuadMesh.svg"),
+            "MenuText": "Quad mesh",
+            "ToolTip": "Mesh the selected planar faces (or face objects picked in the tree) together with "
+            "quads into one FEM mesh object, put into the active Analysis; set its parameters in the task panel",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and any(
+            is_planar(face) for _, _, face in selected_faces_and_sheets())
+
+    def Activated(self):
+        # Runs from a toolbar: nothing may escape into FreeCAD.
+        try:
+            self.run_on_selection()
+        except Exception as error:
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
+
+    def run_on_selection(self):
+        if FreeCADGui.Control.activeDialog():
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: close the open task dialog first\n")
+            return
+        doc = FreeCAD.ActiveDocument
+        faces = []
+        for obj, subname, face in selected_faces_and_sheets():
+            if is_planar(face):
+                faces.append((obj, subname))
+            else:
+                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar; "
+                                           "left out of the quad mesh\n")
+        if not faces:
+            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: no planar face selected\n")
+            return
+        import FemGui
+
+        analysis = FemGui.getActiveAnalysis()
+        if analysis is not None and analysis.Document != doc:
+            analysis = None
+        # The task panel ends this transaction: OK commits it, Cancel aborts
+        # it and so takes the new object back (see taskpanels).
+        doc.openTransaction(self.name)
+        try:
+            if len({obj.Name for obj, _ in faces}) == 1:
+                mesh = objects.make_mesh_object(doc, faces[0][0], [subname for _, subname in faces],
+                                                analysis=analysis)
+            else:
+                mesh = objects.make_mesh_object(doc, faces, None, analysis=analysis)
+        except Exception:
+            doc.abortTransaction()
+            raise
+        FreeCADGui.Selection.clearSelection()
+        if mesh.Status == "ok":
+            FreeCAD.Console.PrintMessage(f"MedialMesh: {mesh.Label}: {mesh.QuadCount} quads\n")
+        opened = False
+        try:
+            mesh.ViewObject.Proxy.just_created = True
+            opened = FreeCADGui.getDocument(doc.Name).setEdit(mesh.Name, 0)
+        finally:
+            if not opened:  # no panel to end the transaction: the object stays, as made
+                doc.commitTransaction()
+                if hasattr(mesh.ViewObject.Proxy, "just_created"):
+                    mesh.ViewObject.Proxy.just_created = False
+
+
 FreeCADGui.addCommand("MedialMesh_Analyse", CommandAnalyse())
 FreeCADGui.addCommand("MedialMesh_Decompose", CommandDecompose())
+FreeCADGui.addCommand("MedialMesh_QuadMesh", CommandQuadMesh())

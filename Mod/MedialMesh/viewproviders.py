@@ -1,11 +1,14 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """How the objects look: an analysis as the medial axis with its edges
 coloured by flow type and the singularities as dots coloured by sign with
-their k; a decomposition as its splits, with its Sketch as a child."""
+their k; a decomposition as its splits, with its Sketch as a child; a quad
+mesh as FreeCAD draws any FEM mesh, with its decomposition Sketch as a child
+and the task panel on double click."""
 
 import os
 
 import FreeCAD
+import FreeCADGui
 from pivy import coin
 
 from . import analysis, decomposition, objects
@@ -24,10 +27,18 @@ class ViewProviderMedialAnalysis:
 
     def attach(self, vobj):
         self.object = vobj.Object
-        # The singularity marks ride along in every display mode.
+        # The singularity marks ride along in every display mode. They sit
+        # beside FreeCAD's display mode switch, which hiding the object turns
+        # off, so they need a switch of their own (see onChanged).
         self.marks = coin.SoSeparator()
-        vobj.RootNode.addChild(self.marks)
+        self.marks_shown = coin.SoSwitch()
+        self.marks_shown.addChild(self.marks)
+        vobj.RootNode.addChild(self.marks_shown)
+        self.show_marks(vobj)
         self.draw_marks(vobj.Object)
+
+    def show_marks(self, vobj):
+        self.marks_shown.whichChild = coin.SO_SWITCH_ALL if vobj.Visibility else coin.SO_SWITCH_NONE
 
     def updateData(self, obj, prop):
         try:
@@ -63,7 +74,8 @@ class ViewProviderMedialAnalysis:
             self.marks.addChild(mark)
 
     def onChanged(self, vobj, prop):
-        pass
+        if prop == "Visibility" and hasattr(self, "marks_shown"):
+            self.show_marks(vobj)
 
     def getIcon(self):
         return os.path.join(ICON_FOLDER, "MedialMesh_Analyse.svg")
@@ -126,3 +138,118 @@ class ViewProviderMedialDecomposition:
 
     def __setstate__(self, state):
         return None
+
+
+class ViewProviderMedialQuadMesh:
+    """Proxy of the view provider (a ViewProviderFemMeshPython) of a MedialMesh
+    quad mesh object, as FreeCAD's Gmsh mesh has (femviewprovider/view_mesh_gmsh.py)."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self  # FreeCAD calls attach
+
+    def attach(self, vobj):
+        self.ViewObject = vobj
+        self.Object = vobj.Object
+        self.panel = None  # the open task panel, if any
+        # Set by the Quad mesh command just before it opens the panel on the
+        # object it made: the panel then removes the object on Cancel.
+        self.just_created = False
+
+    def getIcon(self):
+        return os.path.join(ICON_FOLDER, "MedialMesh_QuadMesh.svg")
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None  # FreeCAD's own editing (Transform, ...)
+        from . import taskpanels
+
+        try:
+            self.panel = taskpanels.QuadMeshTaskPanel(vobj.Object, created=self.just_created)
+            FreeCADGui.Control.showDialog(self.panel)
+        except Exception as error:  # another dialog is open, ...: say so, do not enter edit mode
+            FreeCAD.Console.PrintError(f"MedialMesh: {vobj.Object.Label}: cannot open the task panel: {error}\n")
+            self.panel = None
+            return False
+        finally:
+            self.just_created = False
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None
+        self.panel = None
+        FreeCADGui.Control.closeDialog()
+        return True
+
+    def doubleClicked(self, vobj):
+        gui_doc = FreeCADGui.getDocument(vobj.Object.Document)
+        if gui_doc.getInEdit() or FreeCADGui.Control.activeDialog():
+            FreeCAD.Console.PrintError(
+                f"MedialMesh: {vobj.Object.Label}: close the open task dialog before editing this mesh\n")
+        else:
+            gui_doc.setEdit(vobj.Object.Name)
+        return True
+
+    def claimChildren(self):
+        # The tree asks during restores and deletions too: never fail here.
+        sketch = getattr(getattr(self, "Object", None), "Sketch", None)
+        return [sketch] if sketch else []
+
+    def onDelete(self, vobj, subelements):
+        # The decomposition Sketch belongs to this mesh alone: it goes with it.
+        try:
+            obj = vobj.Object
+            sketch = obj.Sketch
+            if sketch and all(o == obj for o in sketch.InList):
+                obj.Sketch = None
+                obj.Document.removeObject(sketch.Name)
+        except Exception as error:
+            FreeCAD.Console.PrintError(f"MedialMesh: cannot delete the mesh's sketch: {error!r}\n")
+        return True
+
+    def updateData(self, obj, prop):
+        # FreeCAD builds its mesh nodes after attach; by the first mesh they are there.
+        if prop == "FemMesh" and not getattr(self, "faces_pushed_back", False) and obj.ViewObject:
+            try:
+                self.faces_pushed_back = push_faces_back(obj.ViewObject.RootNode)
+            except Exception as error:  # drawing must never take FreeCAD down
+                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}: cannot draw the mesh: {error!r}\n")
+                self.faces_pushed_back = True  # once is enough
+
+    def onChanged(self, vobj, prop):
+        pass
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+FACE_OFFSET = 3.0  # the depth offset of the mesh faces, see push_faces_back
+
+
+def push_faces_back(root):
+    """FreeCAD's FEM mesh view draws the element edges at the depth of the
+    element faces, and they lose to the faces: 'Faces & Wireframe' shows no
+    edges, and a mesh of a face of a solid fights that face in patches.
+    Pushed back in depth more than FreeCAD pushes a part's faces (between 1
+    and 2 here, measured), the element faces let through their own edges and
+    the part's face, on which the edges then show; with the part hidden, the
+    faces show with their edges. Returns whether the faces were found."""
+    search = coin.SoSearchAction()
+    search.setType(coin.SoIndexedFaceSet.getClassTypeId())
+    search.setInterest(coin.SoSearchAction.FIRST)
+    search.setSearchingAll(True)  # in every display mode, shown or not
+    search.apply(root)
+    path = search.getPath()
+    if path is None:
+        return False
+    offset = coin.SoPolygonOffset()
+    offset.factor = FACE_OFFSET
+    offset.units = FACE_OFFSET
+    offset.styles = coin.SoPolygonOffset.FILLED
+    # The faces' group is shared by the display modes showing faces and is a
+    # plain group: the offset reaches the faces, and lines ignore it.
+    path.getNodeFromTail(1).insertChild(offset, 0)
+    return True
