@@ -30,6 +30,10 @@ class TestPackageMetadata(unittest.TestCase):
         self.assertTrue(self.metadata.supportsCurrentFreeCAD())
         self.assertTrue(os.path.isfile(os.path.join(REPO, self.metadata.Icon)))
 
+    def test_dependencies_listed(self):
+        needed = {"FEM", "Part", "Sketcher", "numpy"}
+        self.assertEqual(needed, needed & {d["package"] for d in self.metadata.Depend})
+
     def test_workbench_content(self):
         (workbench,) = self.metadata.Content["workbench"]
         self.assertEqual(workbench.Classname, "MedialMeshWorkbench")
