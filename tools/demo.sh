@@ -59,4 +59,5 @@ echo "demo: wrote into $out: $name.txt, $name.json, $name.svg/.png (face and cor
   "$name.mesh.inp/.msh/.vtu, $name.mesh.txt/.json (quality) and $name.mesh.svg/.png (the quad mesh)," \
   "$name.freecad.FCStd/.png (the analysis and decomposition in FreeCAD; the FEM Analysis of" \
   "$(basename "${fem_input%.*}") with its quad mesh and CalculiX result)," \
+  "$name.freecad.quadmesh.png (the bracket meshed by the Quad mesh command)," \
   "$name.freecad.mesh.png/.stress.png (that mesh and its von Mises stress), $name.freecad.ccx/ (CalculiX files)"

@@ -36,6 +36,32 @@ def show_only(doc, shown):
     FreeCADGui.updateGui()
 
 
+def quad_mesh_command(doc, part):
+    """Mesh Face1 of `part` as a user does: select it, press Quad mesh, press
+    OK in the task panel; save a picture of the mesh; return the mesh object."""
+    import FreeCADGui
+    from PySide2 import QtWidgets
+
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(doc.Name, part.Name, "Face1")
+    FreeCADGui.runCommand("MedialMesh_QuadMesh")
+    FreeCADGui.updateGui()
+    mesh = next((o for o in doc.Objects if getattr(o, "Type", "") == "MedialMesh::QuadMesh"), None)
+    if getattr(mesh, "Status", None) != "ok":
+        raise RuntimeError(f"the quad mesh failed: {getattr(mesh, 'Status', 'no mesh object')}")
+    buttons = [box.button(QtWidgets.QDialogButtonBox.Ok)
+               for box in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDialogButtonBox)]
+    ok = next((b for b in buttons if b is not None and b.isVisible() and b.isEnabled()), None)
+    if ok is None:
+        raise RuntimeError("the Quad mesh task panel did not open")
+    ok.click()
+    FreeCADGui.updateGui()
+    show_only(doc, [part, mesh])
+    FreeCADGui.ActiveDocument.ActiveView.saveImage(os.environ["MEDIALMESH_DEMO_OUT"] + ".quadmesh.png", 1000, 800,
+                                                   "White")
+    return mesh
+
+
 def quad_mesh_and_calculix(doc, source, stem):
     """Import the face in file `source`, quad-mesh it into a FEM Analysis,
     solve it with CalculiX and save pictures of the mesh and of the von Mises
@@ -101,12 +127,16 @@ try:
     FreeCADGui.SendMsgToActiveView("ViewFit")
     FreeCADGui.updateGui()
     FreeCADGui.ActiveDocument.ActiveView.saveImage(stem + ".png", 1000, 800, "White")
+    quad_mesh = quad_mesh_command(doc, part)
     fem_summary = quad_mesh_and_calculix(doc, os.environ["MEDIALMESH_DEMO_FEM_INPUT"], stem)
     doc.saveAs(stem + ".FCStd")
     out.write(f"freecad-demo: {analysis.Label}: {len(analysis.SingularityK)} singularities, "
               f"sum of k {analysis.SumK}; {decomposition.Label}: {decomposition.SplitCount} splits, "
               f"{decomposition.BlockCount} blocks ({decomposition.PolygonBlocks} polygon, "
               f"{decomposition.SubmapBlocks} submapped); wrote {stem}.FCStd and {stem}.png\n")
+    out.write(f"freecad-demo: {quad_mesh.Label} (Quad mesh command, task panel accepted): {quad_mesh.QuadCount} "
+              f"quads, min scaled Jacobian {quad_mesh.MinScaledJacobian:.3f}, {quad_mesh.IrregularNodes} "
+              f"irregular nodes; wrote {stem}.quadmesh.png\n")
     out.write(f"freecad-demo: {fem_summary}\n")
     status = 0
 except Exception:
