@@ -2,6 +2,7 @@
 // Block meshing: the decomposition's blocks filled with quads that conform
 // across every split. One interval assignment for the whole face, nodes on
 // the exact curves, the templates, smoothing, and mid-side nodes for order 2.
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,5 +32,42 @@ struct BlockMesh {
 // edge in two quads, every outer one on the boundary), no inverted element
 // (the worst one named), area equal to the face's within the chordal error.
 BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options);
+
+// A piece of boundary two faces meshed together share: the same 3-D curve
+// between the same two points, with the same nodes.
+struct SharedPiece {
+  int face_a = -1;  // the face that placed the nodes (the lower index)
+  int face_b = -1;
+  int edge_a = 0;  // the piece's edge in each face, 1-based source numbers (FreeCAD's EdgeN)
+  int edge_b = 0;
+  std::array<int, 2> loop_edge_a{};  // the same edges as (loop, edge) of each face's model
+  std::array<int, 2> loop_edge_b{};
+  std::vector<int> nodes_a;  // the piece's nodes in face_a's mesh, ends included
+  std::vector<int> nodes_b;  // their partners in face_b's mesh, in the same order
+};
+
+// The edges shared: distinct pairs of a face's edge and another face's edge
+// that have a piece in common (an edge cut by splits or T-junctions into
+// several pieces counts once per partner edge).
+int shared_edge_count(const std::vector<SharedPiece>& shared);
+
+struct FaceSetBlockMesh {
+  std::vector<BlockMesh> faces;
+  std::vector<SharedPiece> shared;
+  double tolerance = 0.0;  // how far apart points may be and still be one
+};
+
+// Meshes several faces so that the pieces of boundary they share in 3-D get
+// the same nodes. Every edge is first cut where another face's vertex or
+// block outline end lies on it; pieces of two faces between such points
+// that coincide in 3-D (ends and middles within the tolerance, through the
+// faces' frames) are shared. One interval assignment for all faces, a
+// shared piece one count; the lower face places the piece's nodes by arc
+// length and the other puts its nodes on its own curve at the nearest
+// points. Each face's mesh is then finished and checked as mesh_blocks'.
+// Throws as mesh_blocks; when the faces' blocks cannot be given counts
+// together, the SelfCheckError names all the faces.
+FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
+                                      const std::vector<Decomposition>& decompositions, const MeshingOptions& options);
 
 }  // namespace mm
