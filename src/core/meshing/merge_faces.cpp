@@ -122,7 +122,9 @@ MergedMesh merge_face_meshes(const std::vector<FaceModel>& faces, const std::vec
       }
       out.node_of[f].push_back(id[root]);
     }
-    out.normals.push_back(faces[f].frame.normal);
+    const auto& x = faces[f].frame.x_dir;
+    const auto& y = faces[f].frame.y_dir;
+    out.normals.push_back({x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]});
   }
   std::vector<bool> shared_node(out.nodes.size(), false);
   for (int g = 0; g < total; ++g) {

@@ -40,7 +40,7 @@ struct MergedMesh {
   std::vector<int> block_of_quad;              // the block within its face
   std::vector<bool> on_boundary;               // on an element side no other element has: the union's outline
   std::vector<std::vector<int>> node_of;       // per face: its own mesh's node -> merged node
-  std::vector<std::array<double, 3>> normals;  // per face
+  std::vector<std::array<double, 3>> normals;  // per face: x_dir x y_dir of its frame
   int order() const { return midside.empty() ? 1 : 2; }
 };
 

@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 
 #include "svg/svg_writer.hpp"
@@ -47,6 +50,73 @@ void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decompositio
                {valence_colour(6), "valence 6+"},
                {"#ff7f0e", "boundary node off its nc"},
                {"#000", "splits"}});
+}
+
+namespace {
+using Point3 = std::array<double, 3>;
+
+Point3 unit(const Point3& v) {
+  const double n = std::hypot(v[0], v[1], v[2]);
+  return n > 0.0 ? Point3{v[0] / n, v[1] / n, v[2] / n} : v;
+}
+
+double dot3(const Point3& a, const Point3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Point3 cross3(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+}  // namespace
+
+SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector<int>>& shared_chains,
+                           const QualityReport& quality, double width) {
+  Point3 view{0, 0, 0};
+  for (const Point3& n : mesh.normals)
+    for (int k = 0; k < 3; ++k) view[k] += n[k];
+  if (std::hypot(view[0], view[1], view[2]) < 1e-6) view = mesh.normals.empty() ? Point3{0, 0, 1} : mesh.normals[0];
+  view = unit(view);
+  // Screen x: world X across the view (world Y when looking along X).
+  Point3 across = std::abs(view[0]) < 0.99 ? Point3{1, 0, 0} : Point3{0, 1, 0};
+  const double along = dot3(across, view);
+  across = unit({across[0] - along * view[0], across[1] - along * view[1], across[2] - along * view[2]});
+  const Point3 up = cross3(view, across);
+  std::vector<Vec2> at;
+  Box box{{1e300, 1e300}, {-1e300, -1e300}};
+  for (const Point3& p : mesh.nodes) {
+    at.push_back({dot3(p, across), dot3(p, up)});
+    box.min = {std::min(box.min.x, at.back().x), std::min(box.min.y, at.back().y)};
+    box.max = {std::max(box.max.x, at.back().x), std::max(box.max.y, at.back().y)};
+  }
+  if (at.empty()) box = {{0, 0}, {1, 1}};
+  SvgCanvas canvas(box, width);
+  for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
+    std::vector<Vec2> outline;
+    for (int i = 0; i < 4; ++i) {
+      outline.push_back(at[mesh.quads[e][i]]);
+      if (mesh.order() == 2) outline.push_back(at[mesh.midside[e][i]]);
+    }
+    const int face = e < mesh.face_of_quad.size() ? mesh.face_of_quad[e] : 0;
+    canvas.region({outline}, std::string("fill:") + kBlockFills[face % 8] + ";stroke:#555;stroke-width:0.6");
+  }
+  for (const auto& chain : shared_chains) {
+    std::vector<Vec2> line;
+    for (int n : chain) line.push_back(at[n]);
+    canvas.polyline(line, false, "fill:none;stroke:#9467bd;stroke-width:2.5");
+  }
+  for (const IrregularNode& n : quality.irregular_boundary)
+    canvas.dot(at[n.node], 3.5, "fill:#ff7f0e;stroke:black;stroke-width:0.5");
+  for (const IrregularNode& n : quality.irregular_interior)
+    canvas.dot(at[n.node], 5, std::string("fill:") + valence_colour(n.elements) + ";stroke:black;stroke-width:0.5");
+  const double unit_px = 1.0 / canvas.pixels_per_unit();
+  double x = box.min.x;
+  for (const auto& [colour, label] : std::vector<std::pair<std::string, std::string>>{
+           {valence_colour(3), "valence 3"}, {valence_colour(5), "valence 5"}, {"#9467bd", "shared pieces"}}) {
+    canvas.dot({x, box.min.y - 22.0 * unit_px}, 5, "fill:" + colour + ";stroke:black;stroke-width:0.5");
+    canvas.text({x + 8.0 * unit_px, box.min.y - 26.0 * unit_px}, label, 12, "fill:#333");
+    x += (24.0 + 8.0 * label.size()) * unit_px;
+  }
+  return canvas;
 }
 
 }  // namespace mm
