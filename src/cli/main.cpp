@@ -164,6 +164,10 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.command != "mesh" && o.faces.size() > 1)
     throw UsageError{o.command + " takes a single --face"};
+  for (std::size_t i = 0; i < o.faces.size(); ++i) {
+    if (std::count(o.faces.begin(), o.faces.begin() + i, o.faces[i]) > 0)
+      throw UsageError{"face " + std::to_string(o.faces[i]) + " given twice"};
+  }
   if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
   if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose" && o.command != "mesh")
     throw UsageError{"--merge belongs to the singularities, decompose and mesh commands"};
