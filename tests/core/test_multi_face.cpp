@@ -213,3 +213,42 @@ TEST(MultiFace, NoFacesIsAnInputError) {
 
 }  // namespace
 }  // namespace mm
+
+namespace mm {
+namespace {
+
+TEST(MultiFace, DiscFillsTheHoleOfAPlate) {
+  // The whole circle is shared: a plate's hole and the disc inside it. The
+  // circles start off the splits (a split ending at a circle's seam leaves
+  // the plate's decomposition a boundary piece of no length; see the README).
+  const auto circle = [](int sense) {
+    return BoundaryEdge{CircleCurve{{2, 1}, 0.6, 1.0, sense}, 0.0, 2 * kPi, 0, {}, {}};
+  };
+  const std::vector<FaceModel> faces{
+      test::face({test::polygon({{0, 0}, {4, 0}, {4, 2}, {0, 2}}), {circle(-1)}}, "plate"),
+      test::face({{circle(1)}}, "disc")};
+  const MeshedFaces m = mesh_all(faces, 0.15);
+  EXPECT_EQ(shared_edge_count(m.shared), 1);
+  expect_conformal(
+      faces, m, 0.15, [](const Point3& p) { return near(p[0], 0) || near(p[0], 4) || near(p[1], 0) || near(p[1], 2); },
+      12.0);
+}
+
+TEST(MultiFace, CoplanarFacesSplitByAnArc) {
+  // A 2 x 1 rectangle cut by an arc from (1, 0) to (1, 1) bulging right by 0.1.
+  const std::vector<FaceModel> faces{
+      test::face({{test::line({0, 0}, {1, 0}), test::arc({1, 0}, {1, 1}, 0.1), test::line({1, 1}, {0, 1}),
+                   test::line({0, 1}, {0, 0})}},
+                 "left"),
+      test::face({{test::line({1, 0}, {2, 0}), test::line({2, 0}, {2, 1}), test::line({2, 1}, {1, 1}),
+                   test::arc({1, 1}, {1, 0}, -0.1)}},
+                 "right")};
+  const MeshedFaces m = mesh_all(faces, 0.1);
+  EXPECT_EQ(shared_edge_count(m.shared), 1);
+  expect_conformal(
+      faces, m, 0.1, [](const Point3& p) { return near(p[0], 0) || near(p[0], 2) || near(p[1], 0) || near(p[1], 1); },
+      6.0);
+}
+
+}  // namespace
+}  // namespace mm
