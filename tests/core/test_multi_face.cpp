@@ -211,12 +211,6 @@ TEST(MultiFace, NoFacesIsAnInputError) {
   EXPECT_THROW(mesh_faces({}, PipelineOptions{}), InputError);
 }
 
-}  // namespace
-}  // namespace mm
-
-namespace mm {
-namespace {
-
 TEST(MultiFace, DiscFillsTheHoleOfAPlate) {
   // The whole circle is shared: a plate's hole and the disc inside it. The
   // circles start off the splits (a split ending at a circle's seam leaves
@@ -236,13 +230,12 @@ TEST(MultiFace, DiscFillsTheHoleOfAPlate) {
 
 TEST(MultiFace, CoplanarFacesSplitByAnArc) {
   // A 2 x 1 rectangle cut by an arc from (1, 0) to (1, 1) bulging right by 0.1.
-  const std::vector<FaceModel> faces{
-      test::face({{test::line({0, 0}, {1, 0}), test::arc({1, 0}, {1, 1}, 0.1), test::line({1, 1}, {0, 1}),
-                   test::line({0, 1}, {0, 0})}},
-                 "left"),
-      test::face({{test::line({1, 0}, {2, 0}), test::line({2, 0}, {2, 1}), test::line({2, 1}, {1, 1}),
-                   test::arc({1, 1}, {1, 0}, -0.1)}},
-                 "right")};
+  const std::vector<FaceModel> faces{test::face({{test::line({0, 0}, {1, 0}), test::arc({1, 0}, {1, 1}, 0.1),
+                                                  test::line({1, 1}, {0, 1}), test::line({0, 1}, {0, 0})}},
+                                                "left"),
+                                     test::face({{test::line({1, 0}, {2, 0}), test::line({2, 0}, {2, 1}),
+                                                  test::line({2, 1}, {1, 1}), test::arc({1, 1}, {1, 0}, -0.1)}},
+                                                "right")};
   const MeshedFaces m = mesh_all(faces, 0.1);
   EXPECT_EQ(shared_edge_count(m.shared), 1);
   expect_conformal(
