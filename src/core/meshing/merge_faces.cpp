@@ -196,16 +196,30 @@ MergedMesh merge_face_meshes(const std::vector<FaceModel>& faces, const std::vec
     }
   }
   // No node left beside a shared node: a piece shared but not found so.
-  std::vector<int> by_x(out.nodes.size());
-  std::iota(by_x.begin(), by_x.end(), 0);
-  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return out.nodes[a][0] < out.nodes[b][0]; });
-  for (std::size_t i = 0; i < by_x.size(); ++i) {
-    for (std::size_t j = i + 1; j < by_x.size() && out.nodes[by_x[j]][0] - out.nodes[by_x[i]][0] <= tolerance; ++j) {
-      const int a = by_x[i];
-      const int b = by_x[j];
-      if ((shared_node[a] || shared_node[b]) && distance3(out.nodes[a], out.nodes[b]) <= tolerance)
-        fail("nodes " + std::to_string(a + 1) + " and " + std::to_string(b + 1) + " at " + at(out.nodes[a]) +
-             " are one point but were not joined");
+  // Nodes in cells of the tolerance's size; a shared node's neighbours are
+  // in its cell and the 26 around it.
+  std::map<std::array<long long, 3>, std::vector<int>> cells;
+  const auto cell = [&](const Point3& p) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(p[0] / tolerance)),
+                                    static_cast<long long>(std::floor(p[1] / tolerance)),
+                                    static_cast<long long>(std::floor(p[2] / tolerance))};
+  };
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) cells[cell(out.nodes[n])].push_back(static_cast<int>(n));
+  for (std::size_t a = 0; a < out.nodes.size(); ++a) {
+    if (!shared_node[a]) continue;
+    const auto c = cell(out.nodes[a]);
+    for (long long dx = -1; dx <= 1; ++dx) {
+      for (long long dy = -1; dy <= 1; ++dy) {
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto found = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (found == cells.end()) continue;
+          for (int b : found->second) {
+            if (b != static_cast<int>(a) && distance3(out.nodes[a], out.nodes[b]) <= tolerance)
+              fail("nodes " + std::to_string(a + 1) + " and " + std::to_string(b + 1) + " at " + at(out.nodes[a]) +
+                   " are one point but were not joined");
+          }
+        }
+      }
     }
   }
   return out;

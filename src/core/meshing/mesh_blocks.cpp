@@ -735,11 +735,39 @@ void check_options(const MeshingOptions& options) {
     throw InputError("element order must be 1 or 2, got " + std::to_string(options.order));
 }
 
+// A face's box in 3-D, grown by `margin`: faces whose boxes miss each other
+// share nothing, which spares the pairwise searches on many faces.
+struct Box3 {
+  Point3 low{};
+  Point3 high{};
+  bool meets(const Box3& o) const {
+    for (int k = 0; k < 3; ++k)
+      if (low[k] > o.high[k] || o.low[k] > high[k]) return false;
+    return true;
+  }
+};
+
+Box3 face_box(const FaceModel& face, double margin) {
+  // The samples lie on the curves within the chord tolerance of them.
+  const double chord = 1e-3 * face.size;
+  Box3 box{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+  for (const Loop& loop : face.loops) {
+    for (const Vec2& p : sample_loop(loop, chord)) {
+      const Point3 q = to_3d(face.frame, p);
+      for (int k = 0; k < 3; ++k) {
+        box.low[k] = std::min(box.low[k], q[k] - chord - margin);
+        box.high[k] = std::max(box.high[k], q[k] + chord + margin);
+      }
+    }
+  }
+  return box;
+}
+
 // The break points every face's edges get from the others: their loop
 // vertices and the ends of their blocks' boundary pieces (where their splits
 // meet the boundary), wherever these lie inside one of its edges.
 std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::vector<Decomposition>& decompositions,
-                                double tolerance) {
+                                const std::vector<Box3>& boxes, double tolerance) {
   std::vector<std::vector<Point3>> marks(faces.size());
   for (std::size_t g = 0; g < faces.size(); ++g) {
     for (const Loop& loop : faces[g].loops) {
@@ -760,7 +788,7 @@ std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::
     const FaceModel& face = faces[f];
     for (const Loop& loop : face.loops) cuts[f].emplace_back(loop.edges.size());
     for (std::size_t g = 0; g < faces.size(); ++g) {
-      if (g == f) continue;
+      if (g == f || !boxes[f].meets(boxes[g])) continue;
       for (const Point3& p : marks[g]) {
         if (off_plane(face.frame, p) > tolerance) continue;
         const Vec2 q = in_plane(face.frame, p);
@@ -807,7 +835,9 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   FaceSetBlockMesh result;
   for (const FaceModel& f : faces) result.tolerance = std::max({result.tolerance, 1e-5 * f.size, 10.0 * f.tolerance});
   const double tolerance = result.tolerance;
-  std::vector<EdgeCuts> cuts = edge_cuts(faces, decompositions, tolerance);
+  std::vector<Box3> boxes;
+  for (const FaceModel& f : faces) boxes.push_back(face_box(f, tolerance));
+  std::vector<EdgeCuts> cuts = edge_cuts(faces, decompositions, boxes, tolerance);
   std::vector<std::unique_ptr<BlockMesher>> meshers;
   std::vector<int> offset{0};
   for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -839,6 +869,7 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   };
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (std::size_t g = f + 1; g < faces.size(); ++g) {
+      if (!boxes[f].meets(boxes[g])) continue;
       const auto& fs = meshers[f]->segments();
       const auto& gs = meshers[g]->segments();
       for (std::size_t i = 0; i < fs.size(); ++i) {
