@@ -207,6 +207,47 @@ TEST(MultiFace, OneFaceMeshesAsMeshFaceDoes) {
   EXPECT_DOUBLE_EQ(all.quality.min_scaled_jacobian, one.quality.min_scaled_jacobian);
 }
 
+// One quad per face, the faces' frames the plane z = 0.
+QuadMesh one_quad(double x0) {
+  QuadMesh mesh;
+  for (Vec2 p : {Vec2{x0, 0}, Vec2{x0 + 1, 0}, Vec2{x0 + 1, 1}, Vec2{x0, 1}}) {
+    mesh.nodes.push_back(p);
+    NodePlace place;
+    place.loop = 0;
+    place.corner_elements = 1;
+    mesh.places.push_back(place);
+  }
+  mesh.quads.push_back({0, 1, 2, 3});
+  mesh.block_of_quad.push_back(0);
+  return mesh;
+}
+
+TEST(MultiFace, MergeJoinsPartnersAndNamesTheFacesWhenOneIsMissing) {
+  const std::vector<FaceModel> faces{rect(0, 0, 1, 1, "left"), rect(1, 0, 2, 1, "right")};
+  const QuadMesh left = one_quad(0), right = one_quad(1);
+  SharedPiece piece;
+  piece.face_a = 0;
+  piece.face_b = 1;
+  piece.edge_a = 2;
+  piece.edge_b = 4;
+  piece.nodes_a = {1, 2};  // (1, 0), (1, 1)
+  piece.nodes_b = {0, 3};
+  const MergedMesh merged = merge_face_meshes(faces, {&left, &right}, {piece}, 1e-6);
+  EXPECT_EQ(merged.nodes.size(), 6u);
+  EXPECT_EQ(merged.node_of[1][0], merged.node_of[0][1]);
+  EXPECT_EQ(std::count(merged.on_boundary.begin(), merged.on_boundary.end(), true), 6);
+  // A partner off by more than the tolerance: a self-check error naming both faces and edges.
+  const QuadMesh apart = one_quad(1.01);
+  try {
+    merge_face_meshes(faces, {&left, &apart}, {piece}, 1e-6);
+    FAIL() << "no error";
+  } catch (const SelfCheckError& e) {
+    const std::string message = e.what();
+    for (const char* word : {"left", "right", "Edge2", "Edge4"})
+      EXPECT_NE(message.find(word), std::string::npos) << message;
+  }
+}
+
 TEST(MultiFace, NoFacesIsAnInputError) {
   EXPECT_THROW(mesh_faces({}, PipelineOptions{}), InputError);
 }

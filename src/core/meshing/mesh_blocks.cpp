@@ -268,7 +268,6 @@ class BlockMesher {
     return result;
   }
 
-  const FaceModel& face() const { return face_; }
   const std::vector<BlockShape>& shapes() const { return shapes_; }
   const std::vector<Segment>& segments() const { return segments_; }
   Segment& segment(int i) { return segments_[i]; }
@@ -708,7 +707,7 @@ double distance3(const Point3& a, const Point3& b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 
-// A 3-D point in a face's frame: its in-plane coordinates and its height over the plane.
+// A 3-D point in a face's frame: its coordinates in the plane, and its distance from the plane.
 Vec2 in_plane(const Frame& f, const Point3& p) {
   const Point3 d{p[0] - f.origin[0], p[1] - f.origin[1], p[2] - f.origin[2]};
   return {d[0] * f.x_dir[0] + d[1] * f.x_dir[1] + d[2] * f.x_dir[2],
