@@ -164,7 +164,8 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.command != "mesh" && o.faces.size() > 1)
     throw UsageError{o.command + " takes a single --face"};
-  for (std::size_t i = 0; i < o.faces.size(); ++i) {
+  // Meshing a face with itself would glue the copies along their whole outline.
+  for (std::size_t i = 0; o.command == "mesh" && i < o.faces.size(); ++i) {
     if (std::count(o.faces.begin(), o.faces.begin() + i, o.faces[i]) > 0)
       throw UsageError{"face " + std::to_string(o.faces[i]) + " given twice"};
   }
