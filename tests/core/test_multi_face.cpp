@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "face_builders.hpp"
 #include "mesh_checks.hpp"
@@ -267,6 +268,18 @@ TEST(MultiFace, DiscFillsTheHoleOfAPlate) {
   expect_conformal(
       faces, m, 0.15, [](const Point3& p) { return near(p[0], 0) || near(p[0], 4) || near(p[1], 0) || near(p[1], 2); },
       12.0);
+  // Order 2: each face puts the mid-side nodes of the circle on its own
+  // curve; they are joined, one per side of the merged corner mesh.
+  const MeshedFaces q = mesh_all(faces, 0.15, 2);
+  std::set<std::pair<int, int>> sides;
+  std::set<int> corners;
+  for (const auto& quad : q.mesh.quads) {
+    for (int i = 0; i < 4; ++i) {
+      corners.insert(quad[i]);
+      sides.insert({std::min(quad[i], quad[(i + 1) % 4]), std::max(quad[i], quad[(i + 1) % 4])});
+    }
+  }
+  EXPECT_EQ(q.mesh.nodes.size(), corners.size() + sides.size());
 }
 
 TEST(MultiFace, CoplanarFacesSplitByAnArc) {
