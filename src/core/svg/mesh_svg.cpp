@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "svg/svg_writer.hpp"
@@ -74,7 +75,9 @@ SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector
   Point3 view{0, 0, 0};
   for (const Point3& n : mesh.normals)
     for (int k = 0; k < 3; ++k) view[k] += n[k];
-  if (std::hypot(view[0], view[1], view[2]) < 1e-6) view = mesh.normals.empty() ? Point3{0, 0, 1} : mesh.normals[0];
+  // A closed surface's normals cancel: then an oblique view.
+  if (std::hypot(view[0], view[1], view[2]) < 1e-6 * static_cast<double>(mesh.normals.size()) + 1e-12)
+    view = {0.4, -0.7, 0.6};
   view = unit(view);
   // Screen x: world X across the view (world Y when looking along X).
   Point3 across = std::abs(view[0]) < 0.99 ? Point3{1, 0, 0} : Point3{0, 1, 0};
@@ -90,7 +93,17 @@ SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector
   }
   if (at.empty()) box = {{0, 0}, {1, 1}};
   SvgCanvas canvas(box, width);
-  for (std::size_t e = 0; e < mesh.quads.size(); ++e) {
+  // The elements furthest from the viewer first, so nearer faces cover them.
+  std::vector<double> depth;
+  for (const auto& quad : mesh.quads) {
+    double d = 0.0;
+    for (int n : quad) d += dot3(mesh.nodes[n], view);
+    depth.push_back(d);
+  }
+  std::vector<std::size_t> order(mesh.quads.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth[a] < depth[b]; });
+  for (std::size_t e : order) {
     std::vector<Vec2> outline;
     for (int i = 0; i < 4; ++i) {
       outline.push_back(at[mesh.quads[e][i]]);
