@@ -50,6 +50,21 @@ struct PieceUse {
   bool reversed = false;
 };
 
+// Several faces meshed together: the part of one boundary edge between two
+// break points (its ends and the other faces' vertices on it), as this
+// face's segments in order along the edge. Two faces' stretches that
+// coincide in 3-D get the same nodes.
+struct Stretch {
+  int face = -1;
+  int loop = -1;
+  int edge = -1;
+  double low = 0.0;  // parameters of its ends, in the edge's direction
+  double high = 0.0;
+  double length = 0.0;
+  std::vector<int> segments;
+  bool along(const Segment& s) const { return (s.t_to - s.t_from) * (high - low) > 0.0; }
+};
+
 // A boundary piece sampled finely in its parameter: cumulative chord length
 // and the turning of its tangent, for lengths, bounds and even spacing.
 struct PieceSamples {
@@ -273,6 +288,25 @@ class BlockMesher {
   Segment& segment(int i) { return segments_[i]; }
   const BoundaryEdge& edge_of(const Segment& s) const { return face_.loops[s.loop].edges[s.edge]; }
   Vec2 node(int n) const { return mesh_.nodes[n]; }
+
+  // Moves the vertex where segments j and j + 1 of a stretch meet (the end
+  // of a split on the boundary) along the edge to the point nearest target.
+  void move_joint(const Stretch& st, std::size_t j, Vec2 target) {
+    const int i = st.segments[j];
+    const int k = st.segments[j + 1];
+    Segment& before = segments_[i];
+    Segment& after = segments_[k];
+    const int v = vertex_of_end_[2 * i + (st.along(before) ? 1 : 0)];
+    if (v != vertex_of_end_[2 * k + (st.along(after) ? 0 : 1)])
+      fail("two pieces of a shared edge do not meet at one vertex");
+    const double from = st.along(before) ? before.t_from : before.t_to;
+    const double to = st.along(after) ? after.t_to : after.t_from;
+    const double t = closest_param(edge_of(before), from, to, target).first;
+    (st.along(before) ? before.t_to : before.t_from) = t;
+    (st.along(after) ? after.t_from : after.t_to) = t;
+    mesh_.nodes[v] = edge_point(edge_of(before), t).p;
+    mesh_.places[v].t = t;
+  }
 
   Vec2 segment_end(const Segment& s, bool last) const {
     if (s.split >= 0) return last ? s.line.back() : s.line.front();
@@ -763,23 +797,13 @@ Box3 face_box(const FaceModel& face, double margin) {
 }
 
 // The break points every face's edges get from the others: their loop
-// vertices and the ends of their blocks' boundary pieces (where their splits
-// meet the boundary), wherever these lie inside one of its edges.
-std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::vector<Decomposition>& decompositions,
-                                const std::vector<Box3>& boxes, double tolerance) {
+// vertices, wherever these lie inside one of its edges (a T-junction, or
+// where two faces' edges overlap only in part).
+std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::vector<Box3>& boxes, double tolerance) {
   std::vector<std::vector<Point3>> marks(faces.size());
   for (std::size_t g = 0; g < faces.size(); ++g) {
     for (const Loop& loop : faces[g].loops) {
       for (const BoundaryEdge& edge : loop.edges) marks[g].push_back(to_3d(faces[g].frame, edge.start));
-    }
-    for (const Block& block : decompositions[g].blocks) {
-      for (const BlockSide& side : block.sides) {
-        for (const OutlinePiece& piece : side.pieces) {
-          if (piece.split >= 0) continue;
-          const BoundaryEdge& edge = faces[g].loops[piece.loop].edges[piece.edge];
-          for (double t : {piece.t_from, piece.t_to}) marks[g].push_back(to_3d(faces[g].frame, edge_point(edge, t).p));
-        }
-      }
     }
   }
   std::vector<EdgeCuts> cuts(faces.size());
@@ -803,6 +827,43 @@ std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::
     }
   }
   return cuts;
+}
+
+// A face's boundary segments grouped into stretches: by edge and by the
+// break points (cuts) between them, in order along the edge.
+std::vector<Stretch> face_stretches(const BlockMesher& m, const EdgeCuts& cuts) {
+  std::map<std::array<int, 3>, Stretch> found;
+  const std::vector<Segment>& segments = m.segments();
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    if (s.split >= 0) continue;
+    const BoundaryEdge& edge = m.edge_of(s);
+    const double span = edge.t_end - edge.t_start;
+    const auto position = [&](double t) { return (t - edge.t_start) / span; };
+    const double middle = position(0.5 * (s.t_from + s.t_to));
+    int index = 0;
+    if (s.loop < static_cast<int>(cuts.size()) && s.edge < static_cast<int>(cuts[s.loop].size())) {
+      for (double c : cuts[s.loop][s.edge]) index += position(c) < middle ? 1 : 0;
+    }
+    Stretch& st = found[{s.loop, s.edge, index}];
+    st.loop = s.loop;
+    st.edge = s.edge;
+    st.segments.push_back(static_cast<int>(i));
+  }
+  std::vector<Stretch> stretches;
+  for (auto& [key, st] : found) {
+    const BoundaryEdge& edge = m.edge_of(segments[st.segments.front()]);
+    const double sign = edge.t_end > edge.t_start ? 1.0 : -1.0;
+    const auto low_end = [&](const Segment& s) { return sign * s.t_from < sign * s.t_to ? s.t_from : s.t_to; };
+    std::sort(st.segments.begin(), st.segments.end(),
+              [&](int a, int b) { return sign * low_end(segments[a]) < sign * low_end(segments[b]); });
+    st.low = low_end(segments[st.segments.front()]);
+    const Segment& last = segments[st.segments.back()];
+    st.high = low_end(last) == last.t_from ? last.t_to : last.t_from;
+    for (int i : st.segments) st.length += segments[i].length;
+    stretches.push_back(std::move(st));
+  }
+  return stretches;
 }
 
 std::string face_names(const std::vector<FaceModel>& faces) {
@@ -836,95 +897,92 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   const double tolerance = result.tolerance;
   std::vector<Box3> boxes;
   for (const FaceModel& f : faces) boxes.push_back(face_box(f, tolerance));
-  std::vector<EdgeCuts> cuts = edge_cuts(faces, decompositions, boxes, tolerance);
+  const std::vector<EdgeCuts> cuts = edge_cuts(faces, boxes, tolerance);
   std::vector<std::unique_ptr<BlockMesher>> meshers;
   std::vector<int> offset{0};
+  std::vector<Stretch> stretches;
   for (std::size_t f = 0; f < faces.size(); ++f) {
-    meshers.push_back(
-        std::make_unique<BlockMesher>(faces[f], decompositions[f], options, std::move(cuts[f]), tolerance));
+    meshers.push_back(std::make_unique<BlockMesher>(faces[f], decompositions[f], options, cuts[f], tolerance));
     meshers.back()->prepare();
     offset.push_back(offset.back() + static_cast<int>(meshers.back()->segments().size()));
+    for (Stretch& st : face_stretches(*meshers.back(), cuts[f])) {
+      st.face = static_cast<int>(f);
+      stretches.push_back(std::move(st));
+    }
   }
-  const auto face_of = [&](int global) {
-    return static_cast<int>(std::upper_bound(offset.begin(), offset.end(), global) - offset.begin()) - 1;
-  };
 
-  // Shared pieces: classes of boundary segments, the lowest one (the first
-  // face's) the representative that places the nodes.
-  std::vector<int> parent(offset.back());
+  // Shared stretches: classes, the lowest (the first face's) placing the nodes.
+  std::vector<int> parent(stretches.size());
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<bool> reversed(offset.back(), false);  // against the representative's direction
-  const auto ends = [&](int f, const Segment& s) {
-    const BlockMesher& m = *meshers[f];
-    return std::make_pair(to_3d(faces[f].frame, m.segment_end(s, false)),
-                          to_3d(faces[f].frame, m.segment_end(s, true)));
+  std::vector<bool> reversed(stretches.size(), false);  // against the representative's direction
+  const auto point3 = [&](const Stretch& st, bool last) {
+    const BoundaryEdge& edge = meshers[st.face]->edge_of(meshers[st.face]->segments()[st.segments.front()]);
+    return to_3d(faces[st.face].frame, edge_point(edge, last ? st.high : st.low).p);
   };
-  // The middle of one segment lies on the other's curve.
-  const auto middle_on = [&](int f, const Segment& s, int g, const Segment& o) {
-    const BlockMesher& m = *meshers[f];
-    const Point3 mid = to_3d(faces[f].frame, edge_point(m.edge_of(s), 0.5 * (s.t_from + s.t_to)).p);
-    const BoundaryEdge& other = meshers[g]->edge_of(o);
-    return locate_on_edge(faces[g], other, o.t_from, o.t_to, mid, tolerance).second <= tolerance;
+  // Every segment's middle of one stretch lies on the other's curve. (Lengths,
+  // summed from chords, are only a quick first test: within 1e-3 on curves.)
+  const auto lies_on = [&](const Stretch& a, const Stretch& b) {
+    const BlockMesher& m = *meshers[a.face];
+    const BoundaryEdge& other = meshers[b.face]->edge_of(meshers[b.face]->segments()[b.segments.front()]);
+    for (int i : a.segments) {
+      const Segment& s = m.segments()[i];
+      const Point3 mid = to_3d(faces[a.face].frame, edge_point(m.edge_of(s), 0.5 * (s.t_from + s.t_to)).p);
+      if (locate_on_edge(faces[b.face], other, b.low, b.high, mid, tolerance).second > tolerance) return false;
+    }
+    return true;
   };
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    for (std::size_t g = f + 1; g < faces.size(); ++g) {
-      if (!boxes[f].meets(boxes[g])) continue;
-      const auto& fs = meshers[f]->segments();
-      const auto& gs = meshers[g]->segments();
-      for (std::size_t i = 0; i < fs.size(); ++i) {
-        if (fs[i].split >= 0) continue;
-        const auto [a0, a1] = ends(static_cast<int>(f), fs[i]);
-        for (std::size_t j = 0; j < gs.size(); ++j) {
-          if (gs[j].split >= 0 || std::abs(fs[i].length - gs[j].length) > 2.0 * tolerance) continue;
-          const auto [b0, b1] = ends(static_cast<int>(g), gs[j]);
-          const bool forward = distance3(a0, b0) <= tolerance && distance3(a1, b1) <= tolerance;
-          const bool backward = distance3(a0, b1) <= tolerance && distance3(a1, b0) <= tolerance;
-          if (!forward && !backward) continue;
-          if (!middle_on(static_cast<int>(f), fs[i], static_cast<int>(g), gs[j]) ||
-              !middle_on(static_cast<int>(g), gs[j], static_cast<int>(f), fs[i]))
-            continue;
-          bool against = !forward;
-          if (forward && backward) {
-            // A closed piece (a whole circle): its direction from the tangents.
-            const Vec2 ta = edge_tangent(meshers[f]->edge_of(fs[i]), fs[i].t_from);
-            const Vec2 tb = edge_tangent(meshers[g]->edge_of(gs[j]), gs[j].t_from);
-            const Point3 da = to_3d(faces[f].frame, ta), db = to_3d(faces[g].frame, tb);
-            const Point3 oa = to_3d(faces[f].frame, {}), ob = to_3d(faces[g].frame, {});
-            double along = 0.0;
-            for (int k = 0; k < 3; ++k) along += (da[k] - oa[k]) * (db[k] - ob[k]);
-            against = along < 0.0;
-          }
-          const int a = offset[f] + static_cast<int>(i);
-          const int b = offset[g] + static_cast<int>(j);
-          const int root = find_root(parent, a);
-          if (find_root(parent, b) != b) continue;  // already shared with an earlier face
-          parent[b] = root;
-          reversed[b] = reversed[a] != against;
-        }
+  for (std::size_t a = 0; a < stretches.size(); ++a) {
+    for (std::size_t b = a + 1; b < stretches.size(); ++b) {
+      const Stretch& sa = stretches[a];
+      const Stretch& sb = stretches[b];
+      if (sa.face == sb.face || !boxes[sa.face].meets(boxes[sb.face]) ||
+          find_root(parent, static_cast<int>(b)) != static_cast<int>(b) ||
+          std::abs(sa.length - sb.length) > 2.0 * tolerance + 1e-3 * std::max(sa.length, sb.length))
+        continue;
+      const Point3 a0 = point3(sa, false), a1 = point3(sa, true), b0 = point3(sb, false), b1 = point3(sb, true);
+      const bool forward = distance3(a0, b0) <= tolerance && distance3(a1, b1) <= tolerance;
+      const bool backward = distance3(a0, b1) <= tolerance && distance3(a1, b0) <= tolerance;
+      if ((!forward && !backward) || !lies_on(sa, sb) || !lies_on(sb, sa)) continue;
+      bool against = !forward;
+      if (forward && backward) {
+        // A closed stretch (a whole circle): its direction from the tangents.
+        const auto tangent = [&](const Stretch& st) {
+          const BoundaryEdge& edge = meshers[st.face]->edge_of(meshers[st.face]->segments()[st.segments.front()]);
+          const Vec2 t = edge_tangent(edge, st.low);
+          const Point3 tip = to_3d(faces[st.face].frame, t), base = to_3d(faces[st.face].frame, {});
+          return Point3{tip[0] - base[0], tip[1] - base[1], tip[2] - base[2]};
+        };
+        const Point3 ta = tangent(sa), tb = tangent(sb);
+        against = ta[0] * tb[0] + ta[1] * tb[1] + ta[2] * tb[2] < 0.0;
       }
+      parent[b] = find_root(parent, static_cast<int>(a));
+      reversed[b] = reversed[a] != against;
     }
   }
 
-  // One interval assignment: a variable per class.
+  // One interval assignment: a count per segment, a shared stretch's
+  // segments in every face summing alike.
   IntervalProblem problem;
-  std::vector<int> variable(offset.back(), -1);
-  for (int s = 0; s < offset.back(); ++s) {
-    const int root = find_root(parent, s);
-    const Segment& segment = meshers[face_of(s)]->segments()[s - offset[face_of(s)]];
-    if (variable[root] < 0) {
-      variable[root] = static_cast<int>(problem.segments.size());
-      problem.segments.push_back({std::max(segment.length / options.size, 1e-9), segment.min_count});
-    }
-    variable[s] = variable[root];
-    IntervalSegment& v = problem.segments[variable[s]];
-    v.min_count = std::max(v.min_count, segment.min_count);
-  }
   for (std::size_t f = 0; f < faces.size(); ++f) {
-    for (BlockShape shape : meshers[f]->shapes()) {
+    IntervalProblem own = meshers[f]->interval_problem();
+    problem.segments.insert(problem.segments.end(), own.segments.begin(), own.segments.end());
+    for (BlockShape& shape : own.blocks) {
       for (auto& side : shape.side_segments)
-        for (int& id : side) id = variable[offset[f] + id];
+        for (int& id : side) id += offset[f];
       problem.blocks.push_back(std::move(shape));
     }
+  }
+  const auto global = [&](const Stretch& st) {
+    std::vector<int> ids;
+    for (int i : st.segments) ids.push_back(offset[st.face] + i);
+    return ids;
+  };
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const int root = find_root(parent, static_cast<int>(i));
+    if (root == static_cast<int>(i)) continue;
+    problem.equal_sums.push_back({global(stretches[root]), global(stretches[i])});
+    for (int k : {root, static_cast<int>(i)})
+      for (int seg : stretches[k].segments) meshers[stretches[k].face]->segment(seg).shared = true;
   }
   const auto t0 = std::chrono::steady_clock::now();
   IntervalAssignment intervals;
@@ -936,57 +994,70 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   }
   const auto t1 = std::chrono::steady_clock::now();
 
-  // Placement face by face: a shared piece's later faces take the points of
-  // its first face, which has placed them by then. No face spreads a shared
-  // piece's count.
-  for (int s = 0; s < offset.back(); ++s) {
-    const int root = find_root(parent, s);
-    if (root == s) continue;
-    meshers[face_of(s)]->segment(s - offset[face_of(s)]).shared = true;
-    meshers[face_of(root)]->segment(root - offset[face_of(root)]).shared = true;
-  }
+  // Placement face by face. The first face places a shared stretch's nodes;
+  // a later face moves its own segment ends on the stretch (where its splits
+  // meet it) to the nodes its counts reach, and puts its nodes there.
+  std::vector<std::vector<int>> run_nodes(stretches.size());
+  const auto collect_run = [&](std::size_t i) {
+    const Stretch& st = stretches[i];
+    const BlockMesher& m = *meshers[st.face];
+    std::vector<int>& run = run_nodes[i];
+    for (int seg : st.segments) {
+      const Segment& s = m.segments()[seg];
+      std::vector<int> nodes = s.nodes;
+      if (!st.along(s)) std::reverse(nodes.begin(), nodes.end());
+      run.insert(run.end(), nodes.begin() + (run.empty() ? 0 : 1), nodes.end());
+    }
+  };
   std::size_t first_block = 0;
+  std::size_t next_stretch = 0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     BlockMesher& m = *meshers[f];
-    std::vector<int> counts;
-    for (std::size_t i = 0; i < m.segments().size(); ++i) {
-      const int s = offset[f] + static_cast<int>(i);
-      counts.push_back(intervals.counts[variable[s]]);
-      const int root = find_root(parent, s);
-      if (root == s) continue;
-      Segment& segment = m.segment(static_cast<int>(i));
-      const BlockMesher& owner = *meshers[face_of(root)];
-      const Segment& source = owner.segments()[root - offset[face_of(root)]];
-      segment.targets.clear();
-      for (std::size_t k = 1; k + 1 < source.nodes.size(); ++k) {
-        const Point3 p = to_3d(faces[face_of(root)].frame, owner.node(source.nodes[k]));
-        segment.targets.push_back(in_plane(faces[f].frame, p));
+    const std::vector<int> counts(intervals.counts.begin() + offset[f], intervals.counts.begin() + offset[f + 1]);
+    const std::size_t first_stretch = next_stretch;
+    for (; next_stretch < stretches.size() && stretches[next_stretch].face == static_cast<int>(f); ++next_stretch) {
+      const int root = find_root(parent, static_cast<int>(next_stretch));
+      if (root == static_cast<int>(next_stretch)) continue;
+      const Stretch& st = stretches[next_stretch];
+      const Stretch& source = stretches[root];
+      std::vector<Point3> run;
+      for (int n : run_nodes[root]) run.push_back(to_3d(faces[source.face].frame, meshers[source.face]->node(n)));
+      if (reversed[next_stretch]) std::reverse(run.begin(), run.end());
+      std::size_t at = 0;
+      for (std::size_t j = 0; j < st.segments.size(); ++j) {
+        Segment& s = m.segment(st.segments[j]);
+        const std::size_t n = static_cast<std::size_t>(counts[st.segments[j]]);
+        if (at + n >= run.size()) throw SelfCheckError(face_names(faces), "mesh: a shared stretch's counts differ");
+        if (j + 1 < st.segments.size()) m.move_joint(st, j, in_plane(faces[f].frame, run[at + n]));
+        s.targets.clear();
+        for (std::size_t k = 1; k < n; ++k) s.targets.push_back(in_plane(faces[f].frame, run[at + k]));
+        if (!st.along(s)) std::reverse(s.targets.begin(), s.targets.end());
+        at += n;
       }
-      if (reversed[s]) std::reverse(segment.targets.begin(), segment.targets.end());
     }
     const std::size_t blocks = m.shapes().size();
     const std::vector<std::vector<int>> params(intervals.params.begin() + first_block,
                                                intervals.params.begin() + first_block + blocks);
     first_block += blocks;
     m.place(counts, params);
+    for (std::size_t i = first_stretch; i < next_stretch; ++i) collect_run(i);
   }
   const auto t2 = std::chrono::steady_clock::now();
-  for (int s = 0; s < offset.back(); ++s) {
-    const int root = find_root(parent, s);
-    if (root == s) continue;
-    const int fa = face_of(root), fb = face_of(s);
-    const Segment& a = meshers[fa]->segments()[root - offset[fa]];
-    const Segment& b = meshers[fb]->segments()[s - offset[fb]];
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const int root = find_root(parent, static_cast<int>(i));
+    if (root == static_cast<int>(i)) continue;
+    const Stretch& a = stretches[root];
+    const Stretch& b = stretches[i];
     SharedPiece piece;
-    piece.face_a = fa;
-    piece.face_b = fb;
-    piece.edge_a = meshers[fa]->edge_of(a).source_index;
-    piece.edge_b = meshers[fb]->edge_of(b).source_index;
+    piece.face_a = a.face;
+    piece.face_b = b.face;
+    piece.edge_a = faces[a.face].loops[a.loop].edges[a.edge].source_index;
+    piece.edge_b = faces[b.face].loops[b.loop].edges[b.edge].source_index;
     piece.loop_edge_a = {a.loop, a.edge};
     piece.loop_edge_b = {b.loop, b.edge};
-    piece.nodes_a = a.nodes;
-    piece.nodes_b = b.nodes;
-    if (reversed[s]) std::reverse(piece.nodes_b.begin(), piece.nodes_b.end());
+    piece.nodes_a = run_nodes[root];
+    piece.nodes_b = run_nodes[i];
+    if (reversed[i]) std::reverse(piece.nodes_b.begin(), piece.nodes_b.end());
     result.shared.push_back(std::move(piece));
   }
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };

@@ -34,7 +34,7 @@ struct BlockMesh {
 BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options);
 
 // A piece of boundary two faces meshed together share: the same 3-D curve
-// between the same two points, with the same nodes.
+// between the same two points, with the same nodes (one stretch, see below).
 struct SharedPiece {
   int face_a = -1;  // the face that placed the nodes (the lower index)
   int face_b = -1;
@@ -58,13 +58,17 @@ struct FaceSetBlockMesh {
 };
 
 // Meshes several faces so that the pieces of boundary they share in 3-D get
-// the same nodes. Every edge is first cut where another face's vertex or
-// block outline end lies on it; pieces of two faces between such points
-// that coincide in 3-D (ends and middles within the tolerance, through the
-// faces' frames) are shared. One interval assignment for all faces, a
-// shared piece one count; the lower face places the piece's nodes by arc
-// length and the other puts its nodes on its own curve at the nearest
-// points. Each face's mesh is then finished and checked as mesh_blocks'.
+// the same nodes. Every edge is first cut where another face's loop vertex
+// lies on it (a T-junction); the parts of edges between such points
+// ("stretches") of two faces that coincide in 3-D (ends and middles within
+// the tolerance, through the faces' frames) are shared. Each face keeps its
+// own segments (its splits' ends), so other faces' splits do not cut it into
+// more pieces that each need an interval; one interval assignment for all
+// faces makes a shared stretch's segments sum alike in every face. The
+// lower face places the stretch's nodes by arc length; a later face moves
+// its own split ends on the stretch along the edge to the nodes its counts
+// reach, and puts its other nodes on its own curve nearest to the lower
+// face's. Each face's mesh is then finished and checked as mesh_blocks'.
 // Throws as mesh_blocks; when the faces' blocks cannot be given counts
 // together, the SelfCheckError names all the faces.
 FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
