@@ -23,7 +23,7 @@ struct BlockOutline {
 // placed by transfinite interpolation from the outline nodes. Throws
 // std::runtime_error naming the block when the outline's counts do not
 // satisfy the template's conditions.
-void fill_block(const BlockShape& shape, const std::vector<int>& params, const BlockOutline& outline, int block,
-                QuadMesh& mesh);
+void fill_block(const BlockShape& shape, const std::vector<int>& params, const BlockOutline& outline,
+                int block, QuadMesh& mesh);
 
 }  // namespace mm
