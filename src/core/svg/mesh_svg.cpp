@@ -72,13 +72,31 @@ Point3 cross3(const Point3& a, const Point3& b) {
 
 SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector<int>>& shared_chains,
                            const QualityReport& quality, double width) {
-  Point3 view{0, 0, 0};
+  // The view that sees the most edge-on face best: the mean normal (face on
+  // for coplanar faces) or a diagonal of the octants (faces at right angles,
+  // closed surfaces, whose normals cancel); ties go to the mean's side.
+  Point3 mean{0, 0, 0};
   for (const Point3& n : mesh.normals)
-    for (int k = 0; k < 3; ++k) view[k] += n[k];
-  // A closed surface's normals cancel: then an oblique view.
-  if (std::hypot(view[0], view[1], view[2]) < 1e-6 * static_cast<double>(mesh.normals.size()) + 1e-12)
-    view = {0.4, -0.7, 0.6};
-  view = unit(view);
+    for (int k = 0; k < 3; ++k) mean[k] += n[k];
+  std::vector<Point3> candidates;
+  if (std::hypot(mean[0], mean[1], mean[2]) > 1e-6 * static_cast<double>(mesh.normals.size())) {
+    mean = unit(mean);
+    candidates.push_back(mean);
+  }
+  for (double x : {1.0, -1.0})
+    for (double y : {-1.0, 1.0})
+      for (double z : {1.0, -1.0}) candidates.push_back(unit({x, y, z}));
+  Point3 view = candidates.front();
+  double best = -1.0;
+  for (const Point3& v : candidates) {
+    double worst = 1.0;
+    for (const Point3& n : mesh.normals) worst = std::min(worst, std::abs(dot3(n, v)));
+    const double score = worst + 1e-3 * dot3(v, mean);
+    if (score > best + 1e-9) {
+      best = score;
+      view = v;
+    }
+  }
   // Screen x: world X across the view (world Y when looking along X).
   Point3 across = std::abs(view[0]) < 0.99 ? Point3{1, 0, 0} : Point3{0, 1, 0};
   const double along = dot3(across, view);
