@@ -182,6 +182,23 @@ TEST(MultiFace, TJunctionSplitsTheLongEdge) {
   EXPECT_TRUE(m.quality.irregular_interior.empty());
 }
 
+TEST(MultiFace, EdgesOverlappingInPartShareTheOverlap) {
+  // B sits on A shifted right: A's top edge and B's bottom edge share x in [1, 2].
+  const std::vector<FaceModel> faces{rect(0, 0, 2, 1, "A"), rect(1, 1, 3, 2, "B")};
+  const MeshedFaces m = mesh_all(faces, 0.125);
+  EXPECT_EQ(shared_edge_count(m.shared), 1);
+  const auto on_outline = [](const Point3& p) {
+    const double x = p[0], y = p[1];
+    const bool low = y<1 + 1e-9, high = y> 1 - 1e-9;
+    return (low && (near(y, 0) || near(x, 0) || near(x, 2))) || (high && (near(y, 2) || near(x, 1) || near(x, 3))) ||
+           (near(y, 1) && (x < 1 + 1e-9 || x > 2 - 1e-9));
+  };
+  expect_conformal(faces, m, 0.125, on_outline, 10.0);
+  int on_overlap = 0;
+  for (const auto& p : m.mesh.nodes) on_overlap += near(p[1], 1) && p[0] > 1 - 1e-9 && p[0] < 2 + 1e-9;
+  EXPECT_EQ(on_overlap, 9);
+}
+
 TEST(MultiFace, FacesWithoutASharedEdgeAreMeshedSideBySide) {
   const std::vector<FaceModel> faces{rect(0, 0, 1, 1, "one"), rect(3, 0, 4, 1, "two")};
   const MeshedFaces m = mesh_all(faces, 0.1);
