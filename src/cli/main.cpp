@@ -5,6 +5,7 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <iostream>
@@ -32,10 +33,12 @@ constexpr const char* kUsage =
     "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
     "       medialmesh decompose FILE [--face N] [--merge F | --merge-size H | --no-merge] [--json] [--svg OUT.svg]\n"
     "                            [--blocks OUT.brep|OUT.step]\n"
-    "       medialmesh mesh FILE [--face N] [--size H] [--order 1|2] [--merge F | --merge-size H | --no-merge]\n"
+    "       medialmesh mesh FILE [--face N]... [--size H] [--order 1|2] [--merge F | --merge-size H | --no-merge]\n"
     "                       [-o OUT.inp|OUT.msh|OUT.vtu] [--shell] [--no-smooth] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
-    "--face takes a number or a comma-separated list (info only).\n"
+    "--face (or --faces) takes a number or a comma-separated list, repeatable (info and mesh only).\n"
+    "mesh with several faces meshes them together: where they share a piece of edge in 3-D (in one\n"
+    "plane or not) both get the same nodes, and the files hold one mesh with those nodes once.\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
     "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n"
     "decompose and mesh merge with F = 0.75 unless told otherwise.\n"
@@ -110,7 +113,7 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= args.size()) throw UsageError{a + " needs a value"};
       return args[++i];
     };
-    if (a == "--face") {
+    if (a == "--face" || a == "--faces") {
       for (int f : parse_face_list(value())) o.faces.push_back(f);
     } else if (a == "--json") {
       o.json = true;
@@ -159,7 +162,13 @@ Options parse(int argc, char** argv) {
   }
   if (o.file.empty()) throw UsageError{"no input file given"};
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
-  if (o.command != "info" && o.faces.size() > 1) throw UsageError{o.command + " takes a single --face"};
+  if (o.command != "info" && o.command != "mesh" && o.faces.size() > 1)
+    throw UsageError{o.command + " takes a single --face"};
+  // Meshing a face with itself would glue the copies along their whole outline.
+  for (std::size_t i = 0; o.command == "mesh" && i < o.faces.size(); ++i) {
+    if (std::count(o.faces.begin(), o.faces.begin() + i, o.faces[i]) > 0)
+      throw UsageError{"face " + std::to_string(o.faces[i]) + " given twice"};
+  }
   if (o.command == "medial" && !o.json && o.svg.empty()) throw UsageError{"medial needs --json or --svg OUT.svg"};
   if ((o.merge || o.no_merge) && o.command != "singularities" && o.command != "decompose" && o.command != "mesh")
     throw UsageError{"--merge belongs to the singularities, decompose and mesh commands"};
@@ -269,6 +278,70 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
   }
 }
 
+// Meshes several faces together; writes the merged mesh, the report (the
+// merged mesh's, each face's under "faces") and a picture of the merged mesh.
+void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
+  if (!o.output.empty()) {
+    const std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
+    if (ext != ".inp" && ext != ".msh" && ext != ".vtu")
+      throw mm::InputError(o.output + ": unknown mesh format (use .inp, .msh or .vtu)");
+  }
+  if (o.size && !(*o.size > 0.0 && std::isfinite(*o.size)))
+    throw mm::InputError("--size must be a positive number, got " + std::to_string(*o.size));
+  double largest = 0.0;
+  for (const mm::FaceModel& face : faces) largest = std::max(largest, face.size);
+  mm::PipelineOptions options;
+  options.meshing.size = o.size ? *o.size : 0.05 * largest;
+  options.meshing.order = o.order;
+  options.meshing.smooth = o.smooth;
+  options.merge = !o.no_merge;
+  if (o.merge) options.tolerance = *o.merge;
+  const mm::MeshedFaces meshed = mm::mesh_faces(faces, options);
+  const int shared_edges = mm::shared_edge_count(meshed.shared);
+  if (!o.output.empty()) {
+    mm::MeshFileOptions file;
+    file.shell_elements = o.shell;
+    mm::write_mesh_file(meshed.mesh, o.output, file);
+  }
+  if (o.json) {
+    nlohmann::json report = mm::merged_mesh_report_json(meshed.quality, meshed.mesh, shared_edges);
+    report["size"] = options.meshing.size;
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const mm::MeshedFace& m = meshed.faces[f];
+      nlohmann::json face = mm::mesh_report_json(m.quality, m.blocks.mesh.order());
+      face["face"] = faces[f].name;
+      face["frame"] = mm::frame_json(faces[f].frame);
+      face["blocks"] = m.decomposition.blocks.size();
+      face["singularities"] = m.decomposition.singularities.size();
+      face["notes"] = m.blocks.notes;
+      list.push_back(face);
+    }
+    report["faces"] = list;
+    std::cout << report.dump(2) << "\n";
+  } else {
+    const mm::QualityReport& q = meshed.quality;
+    std::cout << faces.size() << " faces meshed together, " << shared_edges << " shared edges: " << q.quads
+              << " quads (order " << meshed.mesh.order() << "), " << q.nodes << " nodes, min scaled Jacobian "
+              << q.min_scaled_jacobian << ", mean " << q.mean_scaled_jacobian << ", angles " << q.min_angle << " to "
+              << q.max_angle << " degrees, " << q.irregular_interior.size() << " irregular interior nodes, "
+              << q.seconds << " s\n";
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const mm::QualityReport& fq = meshed.faces[f].quality;
+      std::cout << "  " << faces[f].name << ": " << fq.quads << " quads, min scaled Jacobian " << fq.min_scaled_jacobian
+                << "\n";
+    }
+  }
+  if (!o.svg.empty()) {
+    std::vector<std::vector<int>> chains;
+    for (const mm::SharedPiece& p : meshed.shared) {
+      chains.emplace_back();
+      for (int n : p.nodes_a) chains.back().push_back(meshed.mesh.node_of[p.face_a][n]);
+    }
+    mm::draw_merged_mesh(meshed.mesh, chains, meshed.quality, 800).save(o.svg);
+  }
+}
+
 // OCC's readers crash (null handles in a truncated BREP, a corrupted STEP)
 // or loop for ever on some malformed files, and a NaN in a file can crash its
 // projections. So a child process reads the file first, under a time limit;
@@ -317,6 +390,8 @@ int run(const Options& o) {
     run_singularities(o, faces.front());
   } else if (o.command == "decompose") {
     run_decompose(o, faces.front());
+  } else if (o.command == "mesh" && faces.size() > 1) {
+    run_mesh_faces(o, faces);
   } else if (o.command == "mesh") {
     run_mesh(o, faces.front());
   } else {

@@ -76,6 +76,54 @@ py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
   return result;
 }
 
+// Several faces' merged mesh as numpy arrays, its report, and each face's
+// report and decomposition.
+py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::MeshedFaces& meshed) {
+  const mm::MergedMesh& mesh = meshed.mesh;
+  const auto node_count = static_cast<py::ssize_t>(mesh.nodes.size());
+  py::array_t<double> nodes({node_count, py::ssize_t{3}});
+  auto n3 = nodes.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < node_count; ++i)
+    for (int c = 0; c < 3; ++c) n3(i, c) = mesh.nodes[i][c];
+  const int per_element = mesh.order() == 2 ? 8 : 4;
+  const auto element_count = static_cast<py::ssize_t>(mesh.quads.size());
+  py::array_t<int> elements({element_count, static_cast<py::ssize_t>(per_element)});
+  py::array_t<int> element_faces(element_count);
+  py::array_t<int> blocks(element_count);
+  auto e = elements.mutable_unchecked<2>();
+  auto f = element_faces.mutable_unchecked<1>();
+  auto b = blocks.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < element_count; ++i) {
+    for (int c = 0; c < 4; ++c) e(i, c) = mesh.quads[i][c];
+    if (per_element == 8)
+      for (int c = 0; c < 4; ++c) e(i, 4 + c) = mesh.midside[i][c];
+    f(i) = mesh.face_of_quad[i];
+    b(i) = mesh.block_of_quad[i];
+  }
+  py::dict result;
+  result["nodes"] = nodes;
+  result["elements"] = elements;
+  result["element_faces"] = element_faces;
+  result["element_blocks"] = blocks;
+  nlohmann::json report = mm::merged_mesh_report_json(meshed.quality, mesh, mm::shared_edge_count(meshed.shared));
+  report["notes"] = meshed.faces.front().blocks.notes;
+  result["report"] = to_python(report);
+  py::list per_face;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const mm::MeshedFace& m = meshed.faces[i];
+    nlohmann::json face_report = mm::mesh_report_json(m.quality, m.blocks.mesh.order());
+    face_report["face"] = faces[i].name;
+    nlohmann::json decomposition = mm::decomposition_report_json(faces[i], m.decomposition);
+    decomposition["frame"] = mm::frame_json(faces[i].frame);
+    py::dict entry;
+    entry["report"] = to_python(face_report);
+    entry["decomposition"] = to_python(decomposition);
+    per_face.append(entry);
+  }
+  result["faces"] = per_face;
+  return result;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_medialmesh, m) {
@@ -173,6 +221,41 @@ PYBIND11_MODULE(_medialmesh, m) {
       "nodes), 'element_blocks': (M,), 'report': quality report, 'decomposition': the blocks}. merge is "
       "the merge factor (None: no merging), merge_size a merge distance. Raises InputError for bad input, "
       "SelfCheckError when a stage fails its own checks.");
+
+  m.def(
+      "mesh_faces",
+      [](const std::vector<std::string>& breps, double size, int order, std::optional<double> merge,
+         std::optional<double> merge_size, bool smooth, std::optional<std::vector<std::string>> names) {
+        if (names && names->size() != breps.size())
+          throw mm::InputError("mesh_faces: " + std::to_string(breps.size()) + " faces but " +
+                               std::to_string(names->size()) + " names");
+        std::vector<mm::FaceModel> faces;
+        for (std::size_t i = 0; i < breps.size(); ++i)
+          faces.push_back(
+              mm::face_model_from_brep_string(breps[i], names ? (*names)[i] : "face " + std::to_string(i + 1)));
+        mm::PipelineOptions options;
+        options.meshing.size = size;
+        options.meshing.order = order;
+        options.meshing.smooth = smooth;
+        options.merge = merge.has_value() || merge_size.has_value();
+        options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+        mm::MeshedFaces meshed;
+        {
+          py::gil_scoped_release release;
+          meshed = mm::mesh_faces(faces, options);
+        }
+        return merged_mesh_dict(faces, meshed);
+      },
+      py::arg("breps"), py::arg("size"), py::arg("order") = 1, py::arg("merge") = 0.75,
+      py::arg("merge_size") = py::none(), py::arg("smooth") = true, py::arg("names") = py::none(),
+      "All-quad mesh of several planar faces meshed together, each given as BREP text: where faces share a "
+      "piece of edge in 3-D (coplanar or not, T-junctions included) they get the same nodes, and the result "
+      "is one mesh: {'nodes': (N, 3) array, 'elements': (M, 4 or 8) 0-based node indices (corners "
+      "counter-clockwise seen from each face's normal, then mid-side nodes), 'element_faces': (M,) index "
+      "into breps, 'element_blocks': (M,) block within its face, 'report': quality report of the merged mesh "
+      "(the keys of mesh()'s report, irregular nodes in 3-D, plus 'shared_edges'), 'faces': [{'report', "
+      "'decomposition'}] per face}. names name the faces in messages ('face 1', ... if left out). Raises "
+      "InputError for bad input, SelfCheckError when a stage or the merged mesh fails its own checks.");
 
   m.def(
       "read_faces",

@@ -132,6 +132,25 @@ TEST(IntervalAssignment, RectangleOppositeSidesBecomeEqualNearTheirGoals) {
   EXPECT_EQ(a.counts, (std::vector<int>{10, 5, 10, 5}));
 }
 
+TEST(IntervalAssignment, EqualSumsTieTwoFacesBlocks) {
+  // Two rectangles of two faces: the first's right side (segment 1, goal 5)
+  // is the second's left side cut in two (segments 7 and 8, goals 2 and 2.5).
+  IntervalProblem p = submap({1, 1, 1, 1}, {10, 5, 10, 5});
+  BlockShape second;
+  second.kind = BlockTemplate::Submap;
+  second.corner_types = {1, 1, 1, 1};
+  second.side_segments = {{4}, {5}, {6}, {7, 8}};
+  p.blocks.push_back(second);
+  for (double goal : {3.0, 4.0, 3.0, 2.0, 2.5}) p.segments.push_back({goal, 1});
+  p.equal_sums.push_back({{1}, {7, 8}});
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[1], a.counts[7] + a.counts[8]);
+  EXPECT_EQ(a.counts[5], a.counts[7] + a.counts[8]);
+  p.equal_sums.push_back({{0}, {9}});
+  EXPECT_THROW(assign_intervals(p), std::invalid_argument);
+}
+
 TEST(IntervalAssignment, FlatCornerSplitsASideKeepingItsHeading) {
   // The bottom is two sides meeting at a flat corner (type 2): 4 + 6 = top.
   IntervalProblem p = submap({1, 2, 1, 1, 1}, {4, 6, 5, 9, 5});

@@ -93,6 +93,14 @@ void validate(const IntervalProblem& problem) {
                                       std::to_string(s) + ", there are " + std::to_string(problem.segments.size()));
     }
   }
+  for (size_t i = 0; i < problem.equal_sums.size(); ++i) {
+    for (const std::vector<int>* chain : {&problem.equal_sums[i].first, &problem.equal_sums[i].second}) {
+      for (int s : *chain)
+        if (s < 0 || s >= static_cast<int>(problem.segments.size()))
+          throw std::invalid_argument("interval assignment: equal sums " + std::to_string(i) + " name segment " +
+                                      std::to_string(s) + ", there are " + std::to_string(problem.segments.size()));
+    }
+  }
 }
 
 // dir_0 = 0, dir_{i+1} = dir_i + (2 - type_{i+1}) mod 4; the turning must close.
@@ -328,6 +336,12 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
     }
     built.param_columns.push_back(params);
   }
+  for (const EqualSums& pair : problem.equal_sums) {
+    LinearExpr row;
+    for (int s : pair.first) row[built.count_columns[s]] += 1.0;
+    for (int s : pair.second) row[built.count_columns[s]] -= 1.0;
+    model.add_equation(row, 0.0);
+  }
   return built;
 }
 
@@ -342,6 +356,12 @@ std::string first_violation(const IntervalProblem& problem, const IntervalAssign
     const int lower = problem.segments[s].min_count;
     if (a.counts[s] < lower)
       return "segment " + std::to_string(s) + " has " + std::to_string(a.counts[s]) + " < " + std::to_string(lower);
+  }
+  for (size_t i = 0; i < problem.equal_sums.size(); ++i) {
+    long difference = 0;
+    for (int s : problem.equal_sums[i].first) difference += a.counts[s];
+    for (int s : problem.equal_sums[i].second) difference -= a.counts[s];
+    if (difference != 0) return "equal sums " + std::to_string(i) + " differ by " + std::to_string(difference);
   }
   for (size_t b = 0; b < problem.blocks.size(); ++b) {
     const BlockShape& block = problem.blocks[b];

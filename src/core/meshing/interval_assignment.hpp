@@ -14,9 +14,17 @@ struct IntervalSegment {
   int min_count = 1;  // small features stay resolved (curved edges: <= 45 degrees an interval)
 };
 
+// Two chains of segments that must get the same total: a piece of boundary
+// several faces share, cut differently by each face's splits.
+struct EqualSums {
+  std::vector<int> first;
+  std::vector<int> second;
+};
+
 struct IntervalProblem {
   std::vector<IntervalSegment> segments;
   std::vector<BlockShape> blocks;
+  std::vector<EqualSums> equal_sums;
 };
 
 struct IntervalAssignment {
@@ -30,7 +38,7 @@ struct IntervalAssignment {
 
 // Least weighted relative deviation from the goals, sum |n_s - goal_s| /
 // max(goal_s, 1), subject to every block's conditions (block_shape.hpp) and
-// n_s >= min_count. Template parameters the equations leave free (Disc a, b;
+// n_s >= min_count, and every equal_sums pair summing alike. Template parameters the equations leave free (Disc a, b;
 // TwoSided and OneSided u, v) are chosen by a tie-break far below one
 // interval of deviation: a ~ b, the midpoint triangle's sides alike, OneSided
 // u ~ v with its two rest sides alike. Solved by CBC (10 s limit, best

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 #include "meshing/block_templates.hpp"
@@ -34,11 +37,32 @@ struct Segment {
   int min_count = 1;
   std::vector<int> nodes;      // along the segment's own direction, both ends included
   std::vector<double> params;  // boundary segments: curve parameter of each node
+  // Several faces meshed together: a piece of boundary another face shares.
+  // Its count is the other face's too, so spreading leaves it alone; the
+  // face meshed first places its nodes, the others take those points
+  // (targets, inner nodes in this face's plane, in the segment's direction).
+  bool shared = false;
+  std::vector<Vec2> targets;
 };
 
 struct PieceUse {
   int segment = -1;
   bool reversed = false;
+};
+
+// Several faces meshed together: the part of one boundary edge between two
+// break points (its ends and the other faces' vertices on it), as this
+// face's segments in order along the edge. Two faces' stretches that
+// coincide in 3-D get the same nodes.
+struct Stretch {
+  int face = -1;
+  int loop = -1;
+  int edge = -1;
+  double low = 0.0;  // parameters of its ends, in the edge's direction
+  double high = 0.0;
+  double length = 0.0;
+  std::vector<int> segments;
+  bool along(const Segment& s) const { return (s.t_to - s.t_from) * (high - low) > 0.0; }
 };
 
 // A boundary piece sampled finely in its parameter: cumulative chord length
@@ -118,6 +142,39 @@ double middle_param(const BoundaryEdge& edge, double ta, double tb) {
   return 0.5 * (lo + hi);
 }
 
+// The parameter between ta and tb (either order) of the point of the edge
+// closest to p, and the distance: the nearest of 64 samples, refined by
+// golden section between its neighbours.
+std::pair<double, double> closest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p) {
+  constexpr int kSteps = 64;
+  const auto param = [&](int i) { return ta + (tb - ta) * i / kSteps; };
+  const auto gap = [&](double t) { return distance(edge_point(edge, t).p, p); };
+  int best = 0;
+  double best_gap = gap(ta);
+  for (int i = 1; i <= kSteps; ++i) {
+    const double d = gap(param(i));
+    if (d < best_gap) {
+      best = i;
+      best_gap = d;
+    }
+  }
+  double lo = param(std::max(best - 1, 0));
+  double hi = param(std::min(best + 1, kSteps));
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int i = 0; i < 80; ++i) {
+    const double a = hi - golden * (hi - lo);
+    const double b = lo + golden * (hi - lo);
+    if (gap(a) < gap(b)) {
+      hi = b;
+    } else {
+      lo = a;
+    }
+  }
+  const double t = 0.5 * (lo + hi);
+  const double d = gap(t);
+  return d < best_gap ? std::make_pair(t, d) : std::make_pair(param(best), best_gap);
+}
+
 double quad_area(const QuadMesh& mesh, const std::array<int, 4>& q) {
   double twice = 0.0;
   for (int i = 0; i < 4; ++i) twice += cross(mesh.nodes[q[i]], mesh.nodes[q[(i + 1) % 4]]);
@@ -143,17 +200,28 @@ std::string at(Vec2 p) {
   return s.str();
 }
 
+// Extra break parameters per loop and edge of a face: where the vertices and
+// block outline ends of the faces meshed with it lie on its edges.
+using EdgeCuts = std::vector<std::vector<std::vector<double>>>;
+
+// One face's blocks, in phases: prepare (segments and their shared ends),
+// place (nodes on the segments for given interval counts, then the block
+// templates), finish (smoothing, order 2, checks). run() does all three
+// with the face's own interval assignment.
 class BlockMesher {
  public:
-  BlockMesher(const FaceModel& face, const Decomposition& d, const MeshingOptions& options)
+  BlockMesher(const FaceModel& face, const Decomposition& d, const MeshingOptions& options, EdgeCuts cuts = {},
+              double tolerance = 0.0)
       // Split ends meet the boundary to the decomposition's accuracy, which
       // on faces read with loose edge tolerances is looser than ours.
-      : face_(face), d_(d), options_(options), tolerance_(std::max(1e-5 * face.size, 10.0 * face.tolerance)) {}
+      : face_(face),
+        d_(d),
+        options_(options),
+        cuts_(std::move(cuts)),
+        tolerance_(std::max({1e-5 * face.size, 10.0 * face.tolerance, tolerance})) {}
 
   BlockMesh run() {
-    BlockMesh result;
-    collect_segments();
-    join_segment_ends();
+    prepare();
     const auto t0 = std::chrono::steady_clock::now();
     IntervalAssignment intervals;
     try {
@@ -164,16 +232,37 @@ class BlockMesher {
       fail(std::string("the blocks cannot be given interval counts: ") + e.what());
     }
     const auto t1 = std::chrono::steady_clock::now();
-    std::vector<int> counts = intervals.counts;
-    spread_along_boundary_runs(counts);
-    place_segment_nodes(counts);
+    place(intervals.counts, intervals.params);
+    const auto t2 = std::chrono::steady_clock::now();
+    BlockMesh result = finish();
+    const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+    result.stage_seconds.insert(result.stage_seconds.begin(),
+                                {{"intervals", seconds(t0, t1)}, {"placement", seconds(t1, t2)}});
+    result.notes = intervals.notes;
+    return result;
+  }
+
+  void prepare() {
+    collect_segments();
+    join_segment_ends();
+  }
+
+  void place(const std::vector<int>& counts, const std::vector<std::vector<int>>& params) {
+    counts_ = counts;
+    spread_along_boundary_runs(counts_);
+    place_segment_nodes(counts_);
     for (std::size_t b = 0; b < d_.blocks.size(); ++b) {
       try {
-        fill_block(shapes_[b], intervals.params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_);
+        fill_block(shapes_[b], params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_);
       } catch (const std::runtime_error& e) {
         fail(std::string("a block cannot be filled: ") + e.what());
       }
     }
+  }
+
+  // Smoothing, order 2 and the checks; the mesh handed on.
+  BlockMesh finish() {
+    BlockMesh result;
     const auto t2 = std::chrono::steady_clock::now();
     if (options_.smooth) {
       // Boundary nodes stay where their spacing put them: sliding them for
@@ -188,25 +277,56 @@ class BlockMesher {
     check_mesh();
     const auto t4 = std::chrono::steady_clock::now();
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
-    result.stage_seconds = {{"intervals", seconds(t0, t1)},
-                            {"placement", seconds(t1, t2)},
-                            {"smoothing", seconds(t2, t3)},
-                            {"mesh_check", seconds(t3, t4)}};
-    result.segment_counts = counts;
-    result.notes = intervals.notes;
+    result.stage_seconds = {{"smoothing", seconds(t2, t3)}, {"mesh_check", seconds(t3, t4)}};
+    result.segment_counts = counts_;
     result.mesh = std::move(mesh_);
     return result;
   }
 
- private:
-  void fail(const std::string& check) const { throw SelfCheckError(face_.name, "mesh: " + check); }
-
+  const std::vector<BlockShape>& shapes() const { return shapes_; }
+  const std::vector<Segment>& segments() const { return segments_; }
+  Segment& segment(int i) { return segments_[i]; }
   const BoundaryEdge& edge_of(const Segment& s) const { return face_.loops[s.loop].edges[s.edge]; }
+  Vec2 node(int n) const { return mesh_.nodes[n]; }
+
+  // Moves the vertex where segments j and j + 1 of a stretch meet (the end
+  // of a split on the boundary) along the edge to the point nearest target.
+  void move_joint(const Stretch& st, std::size_t j, Vec2 target) {
+    const int i = st.segments[j];
+    const int k = st.segments[j + 1];
+    Segment& before = segments_[i];
+    Segment& after = segments_[k];
+    const int v = vertex_of_end_[2 * i + (st.along(before) ? 1 : 0)];
+    if (v != vertex_of_end_[2 * k + (st.along(after) ? 0 : 1)])
+      fail("two pieces of a shared edge do not meet at one vertex");
+    const double from = st.along(before) ? before.t_from : before.t_to;
+    const double to = st.along(after) ? after.t_to : after.t_from;
+    const double t = closest_param(edge_of(before), from, to, target).first;
+    (st.along(before) ? before.t_to : before.t_from) = t;
+    (st.along(after) ? after.t_from : after.t_to) = t;
+    mesh_.nodes[v] = edge_point(edge_of(before), t).p;
+    mesh_.places[v].t = t;
+  }
 
   Vec2 segment_end(const Segment& s, bool last) const {
     if (s.split >= 0) return last ? s.line.back() : s.line.front();
     return edge_point(edge_of(s), last ? s.t_to : s.t_from).p;
   }
+
+  IntervalProblem interval_problem() const {
+    IntervalProblem problem;
+    for (const Segment& s : segments_) {
+      IntervalSegment is;
+      is.goal = std::max(s.length / options_.size, 1e-9);
+      is.min_count = s.min_count;
+      problem.segments.push_back(is);
+    }
+    problem.blocks = shapes_;
+    return problem;
+  }
+
+ private:
+  void fail(const std::string& check) const { throw SelfCheckError(face_.name, "mesh: " + check); }
 
   // Segments and, per block, the pieces of its sides as segments used
   // forwards or backwards; the block shapes for interval assignment.
@@ -222,36 +342,30 @@ class BlockMesher {
         std::vector<PieceUse> uses;
         std::vector<int> ids;
         for (const OutlinePiece& piece : side.pieces) {
-          PieceUse use;
-          if (piece.split >= 0) {
-            const std::vector<Vec2>& polyline = d_.splits[piece.split].polyline;
-            const int from = polyline_point(polyline, piece.points.front());
-            const int to = polyline_point(polyline, piece.points.back());
-            if (from == to) fail("a split piece of block " + std::to_string(b) + " has no length");
-            const std::array<int, 3> run{piece.split, std::min(from, to), std::max(from, to)};
-            auto found = segment_of_run.find(run);
-            if (found == segment_of_run.end()) {
-              Segment s;
-              s.split = piece.split;
-              s.line.assign(polyline.begin() + run[1], polyline.begin() + run[2] + 1);
-              s.length = cumulative_length(s.line).back();
-              found = segment_of_run.emplace(run, static_cast<int>(segments_.size())).first;
-              segments_.push_back(std::move(s));
+          if (piece.split < 0) {
+            for (int id : boundary_segments(piece)) {
+              uses.push_back({id, false});
+              ids.push_back(id);
             }
-            use.segment = found->second;
-            use.reversed = from > to;
-          } else {
+            continue;
+          }
+          PieceUse use;
+          const std::vector<Vec2>& polyline = d_.splits[piece.split].polyline;
+          const int from = polyline_point(polyline, piece.points.front());
+          const int to = polyline_point(polyline, piece.points.back());
+          if (from == to) fail("a split piece of block " + std::to_string(b) + " has no length");
+          const std::array<int, 3> run{piece.split, std::min(from, to), std::max(from, to)};
+          auto found = segment_of_run.find(run);
+          if (found == segment_of_run.end()) {
             Segment s;
-            s.loop = piece.loop;
-            s.edge = piece.edge;
-            s.t_from = piece.t_from;
-            s.t_to = piece.t_to;
-            const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, 64);
-            s.length = samples.arc.back();
-            s.min_count = std::max(1, static_cast<int>(std::ceil(samples.turning / kMaxTurnPerInterval - 1e-6)));
-            use.segment = static_cast<int>(segments_.size());
+            s.split = piece.split;
+            s.line.assign(polyline.begin() + run[1], polyline.begin() + run[2] + 1);
+            s.length = cumulative_length(s.line).back();
+            found = segment_of_run.emplace(run, static_cast<int>(segments_.size())).first;
             segments_.push_back(std::move(s));
           }
+          use.segment = found->second;
+          use.reversed = from > to;
           uses.push_back(use);
           ids.push_back(use.segment);
         }
@@ -261,6 +375,44 @@ class BlockMesher {
       uses_.push_back(std::move(sides));
       shapes_.push_back(std::move(shape));
     }
+  }
+
+  // A piece of boundary edge as segments, in its direction: one, or several
+  // where the edge has break points (cuts_) inside the piece.
+  std::vector<int> boundary_segments(const OutlinePiece& piece) {
+    std::vector<double> params{piece.t_from};
+    if (piece.loop < static_cast<int>(cuts_.size()) && piece.edge < static_cast<int>(cuts_[piece.loop].size())) {
+      const BoundaryEdge& edge = face_.loops[piece.loop].edges[piece.edge];
+      const Vec2 end = edge_point(edge, piece.t_to).p;
+      std::vector<double> inside;
+      for (double t : cuts_[piece.loop][piece.edge]) {
+        if ((t - piece.t_from) * (piece.t_to - t) > 0.0) inside.push_back(t);
+      }
+      std::sort(inside.begin(), inside.end(),
+                [&](double a, double b) { return (a - b) * (piece.t_to - piece.t_from) < 0.0; });
+      // A break closer than the tolerance to one already kept or to the
+      // piece's end would make an interval of no length.
+      for (double t : inside) {
+        const Vec2 p = edge_point(edge, t).p;
+        if (distance(p, edge_point(edge, params.back()).p) > tolerance_ && distance(p, end) > tolerance_)
+          params.push_back(t);
+      }
+    }
+    params.push_back(piece.t_to);
+    std::vector<int> ids;
+    for (std::size_t i = 0; i + 1 < params.size(); ++i) {
+      Segment s;
+      s.loop = piece.loop;
+      s.edge = piece.edge;
+      s.t_from = params[i];
+      s.t_to = params[i + 1];
+      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, 64);
+      s.length = samples.arc.back();
+      s.min_count = std::max(1, static_cast<int>(std::ceil(samples.turning / kMaxTurnPerInterval - 1e-6)));
+      ids.push_back(static_cast<int>(segments_.size()));
+      segments_.push_back(std::move(s));
+    }
+    return ids;
   }
 
   // The polyline point a split piece starts or ends at.
@@ -360,18 +512,6 @@ class BlockMesher {
     return place;
   }
 
-  IntervalProblem interval_problem() const {
-    IntervalProblem problem;
-    for (const Segment& s : segments_) {
-      IntervalSegment is;
-      is.goal = std::max(s.length / options_.size, 1e-9);
-      is.min_count = s.min_count;
-      problem.segments.push_back(is);
-    }
-    problem.blocks = shapes_;
-    return problem;
-  }
-
   // Interval assignment fixes what a side's pieces add up to; its linear
   // objective may then load a whole side's change onto one piece. Pieces of
   // boundary in a row on one side meet at no corner and no other block, so
@@ -383,7 +523,8 @@ class BlockMesher {
         std::size_t begin = 0;
         while (begin < side.size()) {
           std::size_t end = begin;
-          while (end < side.size() && segments_[side[end].segment].split < 0) ++end;
+          while (end < side.size() && segments_[side[end].segment].split < 0 && !segments_[side[end].segment].shared)
+            ++end;
           if (end - begin > 1) spread(side, begin, end, counts);
           begin = end + 1;
         }
@@ -431,7 +572,8 @@ class BlockMesher {
         const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, std::max(64, 16 * n));
         s.params.assign(1, s.t_from);
         for (int k = 1; k < n; ++k) {
-          const double t = param_at_length(samples, samples.arc.back() * k / n);
+          const double t = s.targets.empty() ? param_at_length(samples, samples.arc.back() * k / n)
+                                             : closest_param(edge_of(s), s.t_from, s.t_to, s.targets[k - 1]).first;
           NodePlace place;
           place.loop = s.loop;
           place.edge = s.edge;
@@ -585,7 +727,9 @@ class BlockMesher {
   const FaceModel& face_;
   const Decomposition& d_;
   const MeshingOptions& options_;
+  EdgeCuts cuts_;
   double tolerance_;
+  std::vector<int> counts_;  // intervals per segment, as placed
   std::vector<Segment> segments_;
   std::vector<std::vector<std::vector<PieceUse>>> uses_;  // per block, per side
   std::vector<BlockShape> shapes_;
@@ -593,14 +737,341 @@ class BlockMesher {
   QuadMesh mesh_;
 };
 
-}  // namespace
+using Point3 = std::array<double, 3>;
 
-BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options) {
+double distance3(const Point3& a, const Point3& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+// A 3-D point in a face's frame: its coordinates in the plane, and its distance from the plane.
+Vec2 in_plane(const Frame& f, const Point3& p) {
+  const Point3 d{p[0] - f.origin[0], p[1] - f.origin[1], p[2] - f.origin[2]};
+  return {d[0] * f.x_dir[0] + d[1] * f.x_dir[1] + d[2] * f.x_dir[2],
+          d[0] * f.y_dir[0] + d[1] * f.y_dir[1] + d[2] * f.y_dir[2]};
+}
+
+double off_plane(const Frame& f, const Point3& p) {
+  return std::abs((p[0] - f.origin[0]) * f.normal[0] + (p[1] - f.origin[1]) * f.normal[1] +
+                  (p[2] - f.origin[2]) * f.normal[2]);
+}
+
+// Where a 3-D point lies on an edge of a face: the parameter and the
+// distance from the curve (infinite off the face's plane).
+std::pair<double, double> locate_on_edge(const FaceModel& face, const BoundaryEdge& edge, double ta, double tb,
+                                         const Point3& p, double tolerance) {
+  if (off_plane(face.frame, p) > tolerance) return {ta, std::numeric_limits<double>::infinity()};
+  return closest_param(edge, ta, tb, in_plane(face.frame, p));
+}
+
+void check_options(const MeshingOptions& options) {
   if (!(options.size > 0.0) || !std::isfinite(options.size))
     throw InputError("mesh size must be a positive number, got " + std::to_string(options.size));
   if (options.order != 1 && options.order != 2)
     throw InputError("element order must be 1 or 2, got " + std::to_string(options.order));
+}
+
+// A face's box in 3-D, grown by `margin`: faces whose boxes miss each other
+// share nothing, which spares the pairwise searches on many faces.
+struct Box3 {
+  Point3 low{};
+  Point3 high{};
+  bool meets(const Box3& o) const {
+    for (int k = 0; k < 3; ++k)
+      if (low[k] > o.high[k] || o.low[k] > high[k]) return false;
+    return true;
+  }
+};
+
+Box3 face_box(const FaceModel& face, double margin) {
+  // The samples lie on the curves within the chord tolerance of them.
+  const double chord = 1e-3 * face.size;
+  Box3 box{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+  for (const Loop& loop : face.loops) {
+    for (const Vec2& p : sample_loop(loop, chord)) {
+      const Point3 q = to_3d(face.frame, p);
+      for (int k = 0; k < 3; ++k) {
+        box.low[k] = std::min(box.low[k], q[k] - chord - margin);
+        box.high[k] = std::max(box.high[k], q[k] + chord + margin);
+      }
+    }
+  }
+  return box;
+}
+
+// The break points every face's edges get from the others: their loop
+// vertices, wherever these lie inside one of its edges (a T-junction, or
+// where two faces' edges overlap only in part).
+std::vector<EdgeCuts> edge_cuts(const std::vector<FaceModel>& faces, const std::vector<Box3>& boxes, double tolerance) {
+  std::vector<std::vector<Point3>> marks(faces.size());
+  for (std::size_t g = 0; g < faces.size(); ++g) {
+    for (const Loop& loop : faces[g].loops) {
+      for (const BoundaryEdge& edge : loop.edges) marks[g].push_back(to_3d(faces[g].frame, edge.start));
+    }
+  }
+  std::vector<EdgeCuts> cuts(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const FaceModel& face = faces[f];
+    for (const Loop& loop : face.loops) cuts[f].emplace_back(loop.edges.size());
+    for (std::size_t g = 0; g < faces.size(); ++g) {
+      if (g == f || !boxes[f].meets(boxes[g])) continue;
+      for (const Point3& p : marks[g]) {
+        if (off_plane(face.frame, p) > tolerance) continue;
+        const Vec2 q = in_plane(face.frame, p);
+        for (std::size_t l = 0; l < face.loops.size(); ++l) {
+          for (std::size_t e = 0; e < face.loops[l].edges.size(); ++e) {
+            const BoundaryEdge& edge = face.loops[l].edges[e];
+            if (distance(q, edge.start) <= tolerance || distance(q, edge.end) <= tolerance) continue;
+            const auto [t, gap] = closest_param(edge, edge.t_start, edge.t_end, q);
+            if (gap <= tolerance) cuts[f][l][e].push_back(t);
+          }
+        }
+      }
+    }
+  }
+  return cuts;
+}
+
+// A face's boundary segments grouped into stretches: by edge and by the
+// break points (cuts) between them, in order along the edge.
+std::vector<Stretch> face_stretches(const BlockMesher& m, const EdgeCuts& cuts) {
+  std::map<std::array<int, 3>, Stretch> found;
+  const std::vector<Segment>& segments = m.segments();
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    if (s.split >= 0) continue;
+    const BoundaryEdge& edge = m.edge_of(s);
+    const double span = edge.t_end - edge.t_start;
+    const auto position = [&](double t) { return (t - edge.t_start) / span; };
+    const double middle = position(0.5 * (s.t_from + s.t_to));
+    int index = 0;
+    if (s.loop < static_cast<int>(cuts.size()) && s.edge < static_cast<int>(cuts[s.loop].size())) {
+      for (double c : cuts[s.loop][s.edge]) index += position(c) < middle ? 1 : 0;
+    }
+    Stretch& st = found[{s.loop, s.edge, index}];
+    st.loop = s.loop;
+    st.edge = s.edge;
+    st.segments.push_back(static_cast<int>(i));
+  }
+  std::vector<Stretch> stretches;
+  for (auto& [key, st] : found) {
+    const BoundaryEdge& edge = m.edge_of(segments[st.segments.front()]);
+    const double sign = edge.t_end > edge.t_start ? 1.0 : -1.0;
+    const auto low_end = [&](const Segment& s) { return sign * s.t_from < sign * s.t_to ? s.t_from : s.t_to; };
+    std::sort(st.segments.begin(), st.segments.end(),
+              [&](int a, int b) { return sign * low_end(segments[a]) < sign * low_end(segments[b]); });
+    st.low = low_end(segments[st.segments.front()]);
+    const Segment& last = segments[st.segments.back()];
+    st.high = low_end(last) == last.t_from ? last.t_to : last.t_from;
+    for (int i : st.segments) st.length += segments[i].length;
+    stretches.push_back(std::move(st));
+  }
+  return stretches;
+}
+
+std::string face_names(const std::vector<FaceModel>& faces) {
+  std::string names;
+  for (const FaceModel& f : faces) names += (names.empty() ? "" : ", ") + f.name;
+  return names;
+}
+
+}  // namespace
+
+BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options) {
+  check_options(options);
   return BlockMesher(face, decomposition, options).run();
+}
+
+int shared_edge_count(const std::vector<SharedPiece>& shared) {
+  std::set<std::array<int, 6>> edges;
+  for (const SharedPiece& p : shared)
+    edges.insert({p.face_a, p.loop_edge_a[0], p.loop_edge_a[1], p.face_b, p.loop_edge_b[0], p.loop_edge_b[1]});
+  return static_cast<int>(edges.size());
+}
+
+FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
+                                      const std::vector<Decomposition>& decompositions, const MeshingOptions& options) {
+  check_options(options);
+  if (faces.size() != decompositions.size())
+    throw std::invalid_argument("mesh_blocks_together: " + std::to_string(faces.size()) + " faces but " +
+                                std::to_string(decompositions.size()) + " decompositions");
+  FaceSetBlockMesh result;
+  for (const FaceModel& f : faces) result.tolerance = std::max({result.tolerance, 1e-5 * f.size, 10.0 * f.tolerance});
+  const double tolerance = result.tolerance;
+  std::vector<Box3> boxes;
+  for (const FaceModel& f : faces) boxes.push_back(face_box(f, tolerance));
+  const std::vector<EdgeCuts> cuts = edge_cuts(faces, boxes, tolerance);
+  std::vector<std::unique_ptr<BlockMesher>> meshers;
+  std::vector<int> offset{0};
+  std::vector<Stretch> stretches;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    meshers.push_back(std::make_unique<BlockMesher>(faces[f], decompositions[f], options, cuts[f], tolerance));
+    meshers.back()->prepare();
+    offset.push_back(offset.back() + static_cast<int>(meshers.back()->segments().size()));
+    for (Stretch& st : face_stretches(*meshers.back(), cuts[f])) {
+      st.face = static_cast<int>(f);
+      stretches.push_back(std::move(st));
+    }
+  }
+
+  // Shared stretches: classes, the lowest (the first face's) placing the nodes.
+  std::vector<int> parent(stretches.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> reversed(stretches.size(), false);  // against the representative's direction
+  const auto point3 = [&](const Stretch& st, bool last) {
+    const BoundaryEdge& edge = meshers[st.face]->edge_of(meshers[st.face]->segments()[st.segments.front()]);
+    return to_3d(faces[st.face].frame, edge_point(edge, last ? st.high : st.low).p);
+  };
+  // Every segment's middle of one stretch lies on the other's curve. (Lengths,
+  // summed from chords, are only a quick first test: within 1e-3 on curves.)
+  const auto lies_on = [&](const Stretch& a, const Stretch& b) {
+    const BlockMesher& m = *meshers[a.face];
+    const BoundaryEdge& other = meshers[b.face]->edge_of(meshers[b.face]->segments()[b.segments.front()]);
+    for (int i : a.segments) {
+      const Segment& s = m.segments()[i];
+      const Point3 mid = to_3d(faces[a.face].frame, edge_point(m.edge_of(s), 0.5 * (s.t_from + s.t_to)).p);
+      if (locate_on_edge(faces[b.face], other, b.low, b.high, mid, tolerance).second > tolerance) return false;
+    }
+    return true;
+  };
+  for (std::size_t a = 0; a < stretches.size(); ++a) {
+    for (std::size_t b = a + 1; b < stretches.size(); ++b) {
+      const Stretch& sa = stretches[a];
+      const Stretch& sb = stretches[b];
+      if (sa.face == sb.face || !boxes[sa.face].meets(boxes[sb.face]) ||
+          find_root(parent, static_cast<int>(b)) != static_cast<int>(b) ||
+          std::abs(sa.length - sb.length) > 2.0 * tolerance + 1e-3 * std::max(sa.length, sb.length))
+        continue;
+      const Point3 a0 = point3(sa, false), a1 = point3(sa, true), b0 = point3(sb, false), b1 = point3(sb, true);
+      const bool forward = distance3(a0, b0) <= tolerance && distance3(a1, b1) <= tolerance;
+      const bool backward = distance3(a0, b1) <= tolerance && distance3(a1, b0) <= tolerance;
+      if ((!forward && !backward) || !lies_on(sa, sb) || !lies_on(sb, sa)) continue;
+      bool against = !forward;
+      if (forward && backward) {
+        // A closed stretch (a whole circle): its direction from the tangents.
+        const auto tangent = [&](const Stretch& st) {
+          const BoundaryEdge& edge = meshers[st.face]->edge_of(meshers[st.face]->segments()[st.segments.front()]);
+          const Vec2 t = edge_tangent(edge, st.low);
+          const Point3 tip = to_3d(faces[st.face].frame, t), base = to_3d(faces[st.face].frame, {});
+          return Point3{tip[0] - base[0], tip[1] - base[1], tip[2] - base[2]};
+        };
+        const Point3 ta = tangent(sa), tb = tangent(sb);
+        against = ta[0] * tb[0] + ta[1] * tb[1] + ta[2] * tb[2] < 0.0;
+      }
+      parent[b] = find_root(parent, static_cast<int>(a));
+      reversed[b] = reversed[a] != against;
+    }
+  }
+
+  // One interval assignment: a count per segment, a shared stretch's
+  // segments in every face summing alike.
+  IntervalProblem problem;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    IntervalProblem own = meshers[f]->interval_problem();
+    problem.segments.insert(problem.segments.end(), own.segments.begin(), own.segments.end());
+    for (BlockShape& shape : own.blocks) {
+      for (auto& side : shape.side_segments)
+        for (int& id : side) id += offset[f];
+      problem.blocks.push_back(std::move(shape));
+    }
+  }
+  const auto global = [&](const Stretch& st) {
+    std::vector<int> ids;
+    for (int i : st.segments) ids.push_back(offset[st.face] + i);
+    return ids;
+  };
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const int root = find_root(parent, static_cast<int>(i));
+    if (root == static_cast<int>(i)) continue;
+    problem.equal_sums.push_back({global(stretches[root]), global(stretches[i])});
+    for (int k : {root, static_cast<int>(i)})
+      for (int seg : stretches[k].segments) meshers[stretches[k].face]->segment(seg).shared = true;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  IntervalAssignment intervals;
+  try {
+    intervals = assign_intervals(problem);
+  } catch (const std::exception& e) {
+    throw SelfCheckError(face_names(faces),
+                         std::string("mesh: the faces' blocks cannot be given interval counts together: ") + e.what());
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+
+  // Placement face by face. The first face places a shared stretch's nodes;
+  // a later face moves its own segment ends on the stretch (where its splits
+  // meet it) to the nodes its counts reach, and puts its nodes there.
+  std::vector<std::vector<int>> run_nodes(stretches.size());
+  const auto collect_run = [&](std::size_t i) {
+    const Stretch& st = stretches[i];
+    const BlockMesher& m = *meshers[st.face];
+    std::vector<int>& run = run_nodes[i];
+    for (int seg : st.segments) {
+      const Segment& s = m.segments()[seg];
+      std::vector<int> nodes = s.nodes;
+      if (!st.along(s)) std::reverse(nodes.begin(), nodes.end());
+      run.insert(run.end(), nodes.begin() + (run.empty() ? 0 : 1), nodes.end());
+    }
+  };
+  std::size_t first_block = 0;
+  std::size_t next_stretch = 0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    BlockMesher& m = *meshers[f];
+    const std::vector<int> counts(intervals.counts.begin() + offset[f], intervals.counts.begin() + offset[f + 1]);
+    const std::size_t first_stretch = next_stretch;
+    for (; next_stretch < stretches.size() && stretches[next_stretch].face == static_cast<int>(f); ++next_stretch) {
+      const int root = find_root(parent, static_cast<int>(next_stretch));
+      if (root == static_cast<int>(next_stretch)) continue;
+      const Stretch& st = stretches[next_stretch];
+      const Stretch& source = stretches[root];
+      std::vector<Point3> run;
+      for (int n : run_nodes[root]) run.push_back(to_3d(faces[source.face].frame, meshers[source.face]->node(n)));
+      if (reversed[next_stretch]) std::reverse(run.begin(), run.end());
+      std::size_t at = 0;
+      for (std::size_t j = 0; j < st.segments.size(); ++j) {
+        Segment& s = m.segment(st.segments[j]);
+        const std::size_t n = static_cast<std::size_t>(counts[st.segments[j]]);
+        if (at + n >= run.size()) throw SelfCheckError(face_names(faces), "mesh: a shared stretch's counts differ");
+        if (j + 1 < st.segments.size()) m.move_joint(st, j, in_plane(faces[f].frame, run[at + n]));
+        s.targets.clear();
+        for (std::size_t k = 1; k < n; ++k) s.targets.push_back(in_plane(faces[f].frame, run[at + k]));
+        if (!st.along(s)) std::reverse(s.targets.begin(), s.targets.end());
+        at += n;
+      }
+    }
+    const std::size_t blocks = m.shapes().size();
+    const std::vector<std::vector<int>> params(intervals.params.begin() + first_block,
+                                               intervals.params.begin() + first_block + blocks);
+    first_block += blocks;
+    m.place(counts, params);
+    for (std::size_t i = first_stretch; i < next_stretch; ++i) collect_run(i);
+  }
+  const auto t2 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const int root = find_root(parent, static_cast<int>(i));
+    if (root == static_cast<int>(i)) continue;
+    const Stretch& a = stretches[root];
+    const Stretch& b = stretches[i];
+    SharedPiece piece;
+    piece.face_a = a.face;
+    piece.face_b = b.face;
+    piece.edge_a = faces[a.face].loops[a.loop].edges[a.edge].source_index;
+    piece.edge_b = faces[b.face].loops[b.loop].edges[b.edge].source_index;
+    piece.loop_edge_a = {a.loop, a.edge};
+    piece.loop_edge_b = {b.loop, b.edge};
+    piece.nodes_a = run_nodes[root];
+    piece.nodes_b = run_nodes[i];
+    if (reversed[i]) std::reverse(piece.nodes_b.begin(), piece.nodes_b.end());
+    result.shared.push_back(std::move(piece));
+  }
+  const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    BlockMesh mesh = meshers[f]->finish();
+    // The assignment and placement were done for all faces at once.
+    mesh.stage_seconds.insert(mesh.stage_seconds.begin(), {{"intervals", f == 0 ? seconds(t0, t1) : 0.0},
+                                                           {"placement", f == 0 ? seconds(t1, t2) : 0.0}});
+    if (f == 0) mesh.notes = intervals.notes;
+    result.faces.push_back(std::move(mesh));
+  }
+  return result;
 }
 
 }  // namespace mm

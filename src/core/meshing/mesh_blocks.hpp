@@ -2,6 +2,7 @@
 // Block meshing: the decomposition's blocks filled with quads that conform
 // across every split. One interval assignment for the whole face, nodes on
 // the exact curves, the templates, smoothing, and mid-side nodes for order 2.
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,5 +32,46 @@ struct BlockMesh {
 // edge in two quads, every outer one on the boundary), no inverted element
 // (the worst one named), area equal to the face's within the chordal error.
 BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options);
+
+// A piece of boundary two faces meshed together share: the same 3-D curve
+// between the same two points, with the same nodes (one stretch, see below).
+struct SharedPiece {
+  int face_a = -1;  // the face that placed the nodes (the lower index)
+  int face_b = -1;
+  int edge_a = 0;  // the piece's edge in each face, 1-based source numbers (FreeCAD's EdgeN)
+  int edge_b = 0;
+  std::array<int, 2> loop_edge_a{};  // the same edges as (loop, edge) of each face's model
+  std::array<int, 2> loop_edge_b{};
+  std::vector<int> nodes_a;  // the piece's nodes in face_a's mesh, ends included
+  std::vector<int> nodes_b;  // their partners in face_b's mesh, in the same order
+};
+
+// The edges shared: distinct pairs of a face's edge and another face's edge
+// that have a piece in common (an edge cut by splits or T-junctions into
+// several pieces counts once per partner edge).
+int shared_edge_count(const std::vector<SharedPiece>& shared);
+
+struct FaceSetBlockMesh {
+  std::vector<BlockMesh> faces;
+  std::vector<SharedPiece> shared;
+  double tolerance = 0.0;  // how far apart points may be and still be one
+};
+
+// Meshes several faces so that the pieces of boundary they share in 3-D get
+// the same nodes. Every edge is first cut where another face's loop vertex
+// lies on it (a T-junction); the parts of edges between such points
+// ("stretches") of two faces that coincide in 3-D (ends and middles within
+// the tolerance, through the faces' frames) are shared. Each face keeps its
+// own segments (its splits' ends), so other faces' splits do not cut it into
+// more pieces that each need an interval; one interval assignment for all
+// faces makes a shared stretch's segments sum alike in every face. The
+// lower face places the stretch's nodes by arc length; a later face moves
+// its own split ends on the stretch along the edge to the nodes its counts
+// reach, and puts its other nodes on its own curve nearest to the lower
+// face's. Each face's mesh is then finished and checked as mesh_blocks'.
+// Throws as mesh_blocks; when the faces' blocks cannot be given counts
+// together, the SelfCheckError names all the faces.
+FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
+                                      const std::vector<Decomposition>& decompositions, const MeshingOptions& options);
 
 }  // namespace mm

@@ -23,10 +23,24 @@ struct NodePlace {
 
 struct QuadMesh {
   std::vector<Vec2> nodes;
-  std::vector<NodePlace> places;           // one per node
-  std::vector<std::array<int, 4>> quads;   // corner nodes, counter-clockwise
-  std::vector<std::array<int, 4>> midside; // order 2 only: node on side i (corner i to i + 1)
-  std::vector<int> block_of_quad;          // the decomposition block each quad came from
+  std::vector<NodePlace> places;            // one per node
+  std::vector<std::array<int, 4>> quads;    // corner nodes, counter-clockwise
+  std::vector<std::array<int, 4>> midside;  // order 2 only: node on side i (corner i to i + 1)
+  std::vector<int> block_of_quad;           // the decomposition block each quad came from
+  int order() const { return midside.empty() ? 1 : 2; }
+};
+
+// Several faces' meshes as one mesh in 3-D (a single face's too): each
+// node once, the nodes along the pieces of boundary the faces share merged.
+struct MergedMesh {
+  std::vector<std::array<double, 3>> nodes;
+  std::vector<std::array<int, 4>> quads;       // counter-clockwise seen from their face's normal
+  std::vector<std::array<int, 4>> midside;     // order 2 only, as in QuadMesh
+  std::vector<int> face_of_quad;               // index into the faces meshed
+  std::vector<int> block_of_quad;              // the block within its face
+  std::vector<bool> on_boundary;               // on an element side no other element has: the union's outline
+  std::vector<std::vector<int>> node_of;       // per face: its own mesh's node -> merged node
+  std::vector<std::array<double, 3>> normals;  // per face: x_dir x y_dir of its frame
   int order() const { return midside.empty() ? 1 : 2; }
 };
 

@@ -3,6 +3,7 @@
 // mesh flow, decomposition, block meshing and the quality report. The CLI,
 // the Python module and the benchmarks all mesh through here.
 #include "decomposition/decomposition.hpp"
+#include "meshing/merge_faces.hpp"
 #include "meshing/mesh_blocks.hpp"
 #include "quality/quality.hpp"
 
@@ -23,5 +24,19 @@ struct MeshedFace {
 // Throws InputError for bad options, SelfCheckError when a stage's result
 // fails its check.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
+
+// Several faces meshed together: the pieces of boundary they share in 3-D
+// (coplanar or not, a vertex of one inside an edge of another included) get
+// the same nodes, and the meshes are joined into one.
+struct MeshedFaces {
+  std::vector<MeshedFace> faces;    // each face's own result, its quality in its plane
+  std::vector<SharedPiece> shared;  // the pieces shared, with their nodes in both faces
+  MergedMesh mesh;                  // all faces in 3-D, shared nodes once
+  QualityReport quality;            // of the merged mesh (combine_quality), with the stages' seconds
+};
+
+// Throws as mesh_face; SelfCheckError naming the faces when the merged mesh
+// fails its checks (merge_face_meshes), InputError for no faces.
+MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOptions& options);
 
 }  // namespace mm

@@ -116,4 +116,61 @@ QualityReport measure_quality(const QuadMesh& mesh) {
   return report;
 }
 
+QualityReport combine_quality(const std::vector<QualityReport>& faces, const std::vector<const QuadMesh*>& meshes,
+                              const MergedMesh& merged) {
+  if (faces.size() != meshes.size() || merged.node_of.size() != meshes.size())
+    throw InputError("quality: " + std::to_string(faces.size()) + " face reports for " + std::to_string(meshes.size()) +
+                     " meshes");
+  QualityReport report;
+  report.nodes = static_cast<int>(merged.nodes.size());
+  report.quads = static_cast<int>(merged.quads.size());
+  double sum_jacobian = 0.0;
+  int first_quad = 0;
+  bool any = false;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const QualityReport& q = faces[f];
+    report.inverted += q.inverted;
+    report.area += q.area;
+    if (q.quads > 0) {
+      if (!any || q.min_scaled_jacobian < report.min_scaled_jacobian) {
+        report.min_scaled_jacobian = q.min_scaled_jacobian;
+        report.worst_element = first_quad + q.worst_element;
+      }
+      report.min_angle = any ? std::min(report.min_angle, q.min_angle) : q.min_angle;
+      report.max_angle = any ? std::max(report.max_angle, q.max_angle) : q.max_angle;
+      sum_jacobian += q.mean_scaled_jacobian * q.quads;
+      any = true;
+    }
+    first_quad += q.quads;
+  }
+  if (report.quads > 0) report.mean_scaled_jacobian = sum_jacobian / report.quads;
+
+  std::vector<int> elements(merged.nodes.size(), 0);
+  for (const auto& quad : merged.quads)
+    for (int n : quad) ++elements[n];
+  std::vector<int> expected(merged.nodes.size(), 0);
+  std::vector<IrregularNode> first(merged.nodes.size());
+  for (std::size_t f = 0; f < meshes.size(); ++f) {
+    const QuadMesh& mesh = *meshes[f];
+    std::vector<bool> corner(mesh.nodes.size(), false);
+    for (const auto& quad : mesh.quads)
+      for (int n : quad) corner[n] = true;
+    for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+      if (!corner[n]) continue;  // order-2 mid-side nodes have no valence
+      const int m = merged.node_of[f][n];
+      const NodePlace& place = mesh.places[n];
+      if (expected[m] == 0) first[m] = IrregularNode{m, mesh.nodes[n], 0, 0};
+      expected[m] += place.loop < 0 ? 4 : place.corner_elements;
+    }
+  }
+  for (std::size_t m = 0; m < merged.nodes.size(); ++m) {
+    if (elements[m] == 0 || elements[m] == expected[m]) continue;
+    IrregularNode node = first[m];
+    node.elements = elements[m];
+    node.expected = expected[m];
+    (merged.on_boundary[m] ? report.irregular_boundary : report.irregular_interior).push_back(node);
+  }
+  return report;
+}
+
 }  // namespace mm

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a quad mesh for solvers and viewers, placed in 3-D by the face's
-// frame: Abaqus/CalculiX .inp, Gmsh 4.1 .msh (ASCII), VTK .vtu (ASCII).
+// frame (or several faces' merged mesh): Abaqus/CalculiX .inp, Gmsh 4.1 .msh (ASCII), VTK .vtu (ASCII).
 #include <string>
 
 #include "boundary/face_model.hpp"
@@ -24,5 +24,11 @@ struct MeshFileOptions {
 // "face". .vtu: the decomposition block of each element as cell data.
 void write_mesh_file(const QuadMesh& mesh, const Frame& frame, const std::string& path,
                      const MeshFileOptions& options = {});
+
+// The same for a mesh already in 3-D, several faces merged (mesh_faces):
+// .inp plane-stress elements are reversed face by face (those whose face
+// looks down the z axis), NBOUNDARY is the outline of the union, and .vtu
+// also gets the face of each element.
+void write_mesh_file(const MergedMesh& mesh, const std::string& path, const MeshFileOptions& options = {});
 
 }  // namespace mm

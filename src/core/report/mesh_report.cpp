@@ -34,4 +34,25 @@ nlohmann::json mesh_report_json(const QualityReport& quality, int order) {
           {"stages", stages}};
 }
 
+nlohmann::json merged_mesh_report_json(const QualityReport& quality, const MergedMesh& mesh, int shared_edges) {
+  nlohmann::json report = mesh_report_json(quality, mesh.order());
+  const auto placed = [&](const std::vector<IrregularNode>& nodes) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const IrregularNode& n : nodes) {
+      const auto& p = mesh.nodes.at(n.node);
+      list.push_back({{"node", n.node + 1},
+                      {"x", p[0]},
+                      {"y", p[1]},
+                      {"z", p[2]},
+                      {"elements", n.elements},
+                      {"expected", n.expected}});
+    }
+    return list;
+  };
+  report["irregular_interior_nodes"] = placed(quality.irregular_interior);
+  report["irregular_boundary_nodes"] = placed(quality.irregular_boundary);
+  report["shared_edges"] = shared_edges;
+  return report;
+}
+
 }  // namespace mm

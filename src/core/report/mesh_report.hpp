@@ -13,4 +13,9 @@ namespace mm {
 //  "elements", "expected"}]), "area", "seconds", "stages": {name: seconds}}
 nlohmann::json mesh_report_json(const QualityReport& quality, int order);
 
+// The same for several faces' merged mesh (combine_quality), the irregular
+// nodes placed in 3-D ({"node" (1-based), "x", "y", "z", "elements",
+// "expected"}), plus "shared_edges".
+nlohmann::json merged_mesh_report_json(const QualityReport& quality, const MergedMesh& mesh, int shared_edges);
+
 }  // namespace mm

@@ -66,4 +66,12 @@ void draw_decomposition(SvgCanvas& canvas, const FaceModel& face, const MedialAx
 void draw_quad_mesh(SvgCanvas& canvas, const FaceModel& face, const Decomposition& decomposition, const QuadMesh& mesh,
                     const QualityReport& quality);
 
+// Several faces' merged mesh seen along the mean of their normals or an
+// octant diagonal, whichever sees the most edge-on face best (coplanar faces
+// face on), nearer elements over further: each face's
+// elements in its own colour, the shared pieces (chains of merged nodes)
+// drawn bold purple, the irregular nodes marked by valence. Makes the canvas.
+SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector<int>>& shared_chains,
+                           const QualityReport& quality, double width);
+
 }  // namespace mm
