@@ -179,18 +179,32 @@ class TestMeshFace(unittest.TestCase):
         rounded = numpy.round(points / numpy.ptp(points, axis=0).max(), 9)
         self.assertEqual(len(numpy.unique(rounded, axis=0)), len(points))
 
-    def test_two_faces(self):
+    def test_two_faces_sharing_an_edge_mesh_as_one(self):
         # Two halves of a rectangle sharing the edge x = 1.
         left, right = Part.makePlane(1, 1), Part.makePlane(1, 1, FreeCAD.Vector(1, 0, 0))
-        if not hasattr(_medialmesh, "mesh_faces"):
-            with self.assertRaisesRegex(MedialMesh.InputError, "mesh_faces"):
-                MedialMesh.mesh_face([left, right], size=0.25)
-            return
         result = MedialMesh.mesh_face([left, right], size=0.25)
         self.check_quads(result.femmesh, 1)
         self.assertEqual(len(result.per_face), 2)
+        check_conforming(self, result.femmesh, Part.makePlane(2, 1).Edges)
         shared = [p for p in result.femmesh.Nodes.values() if abs(p.x - 1) < TOLERANCE]
-        self.assertEqual(len(shared), len({(round(p.y, 9), round(p.z, 9)) for p in shared}))  # no duplicates
+        self.assertEqual(len(shared), 5)  # 4 intervals along the cut, its nodes once
+
+
+def check_conforming(test, femmesh, outline):
+    """One mesh: no two nodes on one point, every element side in two
+    elements or on the `outline` (the edges bounding the faces meshed)."""
+    points = list(femmesh.Nodes.values())
+    test.assertEqual(len(points), len({(round(p.x, 9), round(p.y, 9), round(p.z, 9)) for p in points}))
+    sides = {}
+    for element in femmesh.Faces:
+        corners = list(femmesh.getElementNodes(element)[:4])
+        for a, b in zip(corners, corners[1:] + corners[:1]):
+            sides[frozenset((a, b))] = sides.get(frozenset((a, b)), 0) + 1
+    outline = Part.Compound(outline)
+    for side, count in sides.items():
+        a, b = (femmesh.Nodes[n] for n in side)
+        on_outline = outline.distToShape(Part.Vertex((a + b) * 0.5))[0] < 1e-6
+        test.assertEqual(count, 1 if on_outline else 2, f"side at {(a + b) * 0.5}")
 
 
 class TestMeshObject(unittest.TestCase):
@@ -377,13 +391,28 @@ class TestMeshObject(unittest.TestCase):
         self.doc.recompute()
         mesh_obj = MedialMesh.make_mesh_object(self.doc, [(left, "Face1"), (right, "Face1")], None, size=0.25)
         self.assertEqual([(o.Name, list(s)) for o, s in mesh_obj.Source], [("Left", ["Face1"]), ("Right", ["Face1"])])
-        if hasattr(_medialmesh, "mesh_faces"):
-            self.assertEqual(mesh_obj.Status, "ok")
-            self.assertEqual(mesh_obj.QuadCount, mesh_obj.FemMesh.QuadrangleCount)
-        else:
-            self.assertIn("mesh_faces", mesh_obj.Status)
-            self.assertEqual(mesh_obj.FemMesh.NodeCount, 0)
+        self.assertEqual(mesh_obj.Status, "ok")
+        self.assertEqual(mesh_obj.QuadCount, 32)
+        check_conforming(self, mesh_obj.FemMesh, Part.makePlane(2, 1).Edges)
 
+    def test_faces_of_two_planes_meeting_at_an_edge(self):
+        # Two sides of a box: x = 0 (Face1) and y = 0 (Face3) meet along the z axis.
+        box = self.doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 2, 3, 1
+        self.doc.recompute()
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, box, ["Face1", "Face3"], size=0.25)
+        self.assertEqual(mesh_obj.Status, "ok")
+        self.assertEqual(mesh_obj.QuadCount, 3 * 4 * 4 + 2 * 4 * 4)
+        faces = [box.Shape.Face1, box.Shape.Face3]
+        shared = [e for e in faces[0].Edges if any(e.isSame(f) for f in faces[1].Edges)]
+        self.assertEqual(len(shared), 1)
+        outline = [e for face in faces for e in face.Edges if not e.isSame(shared[0])]
+        check_conforming(self, mesh_obj.FemMesh, outline)
+        on_axis = [p for p in mesh_obj.FemMesh.Nodes.values() if abs(p.x) < TOLERANCE and abs(p.y) < TOLERANCE]
+        self.assertEqual(len(on_axis), 5)  # the shared edge's 4 intervals, its nodes once
+        for face in faces:
+            for node in on_axis:
+                self.assertLess(face.distToShape(Part.Vertex(node))[0], TOLERANCE)
 
 if __name__ == "__main__":
     unittest.main()
