@@ -132,10 +132,6 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
                                   name=names[0])
         per_face = [_face_part(names[0], faces[0], result["report"], result["decomposition"])]
     else:
-        if not hasattr(_medialmesh, "mesh_faces"):
-            raise _medialmesh.InputError(
-                f"{', '.join(names)}: meshing several faces together needs _medialmesh.mesh_faces, "
-                "which this build of the compiled module does not have")
         result = _medialmesh.mesh_faces([face.exportBrepToString() for face in faces], size, order=order,
                                         merge=merge, merge_size=None, smooth=smooth, names=names)
         per_face = [_face_part(n, f, r["report"], r["decomposition"])
