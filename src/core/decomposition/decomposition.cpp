@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -126,6 +127,111 @@ struct Outline {
   std::vector<Item> items;
   int component = -1;
 };
+
+// Whether submapping can mesh a block with these types at its piece starts
+// (2 where no corner): only convex, flat and reflex corners, and every
+// direction its sides run in has sides running the opposite way, or their
+// counts would have to be 0.
+bool submappable(const std::vector<int>& types) {
+  int direction = 0;
+  bool used[4] = {false, false, false, false};
+  for (const int type : types) {
+    if (type < 1 || type > 3) return false;
+    direction = ((direction + 2 - type) % 4 + 4) % 4;
+    used[direction] = true;
+  }
+  return used[0] == used[2] && used[1] == used[3];
+}
+
+// The interior angle of an outline at the start of piece i, in quarter turns
+// (0 a cusp, 2 straight on, 4 a slit); `type` says which way a reversal goes.
+double interior_quarters(const std::vector<const OutlinePiece*>& pieces, std::size_t i, int type, double tol) {
+  const OutlinePiece& before = *pieces[(i + pieces.size() - 1) % pieces.size()];
+  const OutlinePiece& after = *pieces[i];
+  Vec2 in{0, 0}, out{0, 0};
+  for (std::size_t k = before.points.size(); k-- > 1 && norm(in) <= tol;)
+    in = before.points.back() - before.points[k - 1];
+  for (std::size_t k = 1; k < after.points.size() && norm(out) <= tol; ++k)
+    out = after.points[k] - after.points.front();
+  if (norm(in) <= tol || norm(out) <= tol) return type;
+  double turn = std::atan2(cross(in, out), dot(in, out));
+  if (std::abs(turn) > 0.9 * M_PI) turn = type < 2 ? std::abs(turn) : -std::abs(turn);
+  return 2.0 - turn / (0.5 * M_PI);
+}
+
+// A submapped block whose corner types the mesher cannot submap (a cusp, a
+// slit, or sides that leave a direction without an opposite) is re-typed:
+// every piece start may take type 1, 2 or 3, the block's total turning stays
+// what its singularities need, and among the types that submap the fewest
+// changes win, then the ones nearest the outline's interior angles (the
+// paper's corner rule, Fig. 6: nc by the corner's angle). A dynamic program
+// over the piece starts with the turning so far and the directions used.
+// Returns false when no typing submaps.
+bool make_submappable(Block& b, double tol) {
+  std::vector<const OutlinePiece*> pieces;
+  std::vector<int> types;
+  for (std::size_t s = 0; s < b.sides.size(); ++s) {
+    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
+      pieces.push_back(&b.sides[s].pieces[k]);
+      types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+    }
+  }
+  if (submappable(types)) return true;
+  const int n = static_cast<int>(types.size());
+  int total = 0;
+  for (const int type : types) total += 2 - type;
+  if (total != 4 || n < 4) return false;
+  // State: turning so far (offset by n) and the directions used (4 bits).
+  const int width = 2 * n + 1;
+  const double kInf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> cost(n + 1, std::vector<double>(width * 16, kInf));
+  std::vector<std::vector<int>> from(n + 1, std::vector<int>(width * 16, -1));
+  cost[0][n * 16] = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double angle = interior_quarters(pieces, i, types[i], tol);
+    for (int state = 0; state < width * 16; ++state) {
+      if (cost[i][state] == kInf) continue;
+      const int turning = state / 16 - n, used = state % 16;
+      for (int type = 1; type <= 3; ++type) {
+        const int next_turning = turning + 2 - type;
+        if (next_turning < -n || next_turning > n) continue;
+        const int direction = ((next_turning % 4) + 4) % 4;
+        const int next = (next_turning + n) * 16 + (used | (1 << direction));
+        const double c = cost[i][state] + (type != types[i] ? 10.0 : 0.0) + std::abs(angle - type);
+        if (c < cost[i + 1][next]) {
+          cost[i + 1][next] = c;
+          from[i + 1][next] = state * 4 + type;
+        }
+      }
+    }
+  }
+  int best = -1;
+  for (int used = 0; used < 16; ++used) {
+    const bool balanced = ((used & 1) != 0) == ((used & 4) != 0) && ((used & 2) != 0) == ((used & 8) != 0);
+    const int state = (total + n) * 16 + used;
+    if (balanced && cost[n][state] < kInf && (best < 0 || cost[n][state] < cost[n][best])) best = state;
+  }
+  if (best < 0) return false;
+  for (int i = n, state = best; i > 0; --i) {
+    types[i - 1] = from[i][state] % 4;
+    state = from[i][state] / 4;
+  }
+  int first = 0;
+  while (types[first] == 2) ++first;  // total turning 4 from types 1..3: some corner exists
+  std::vector<BlockCorner> corners;
+  std::vector<BlockSide> sides;
+  for (int k = 0; k < n; ++k) {
+    const int i = (first + k) % n;
+    if (types[i] != 2) {
+      corners.push_back({pieces[i]->points.front(), types[i]});
+      sides.emplace_back();
+    }
+    sides.back().pieces.push_back(*pieces[i]);
+  }
+  b.corners = std::move(corners);
+  b.sides = std::move(sides);
+  return true;
+}
 
 class Decomposer {
  public:
@@ -1695,6 +1801,8 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
+        if (b.kind == BlockKind::Submap && !make_submappable(b, tol_))
+          throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
       total += b.area;
       d.blocks.push_back(std::move(b));
