@@ -159,28 +159,16 @@ double interior_quarters(const std::vector<const OutlinePiece*>& pieces, std::si
   return 2.0 - turn / (0.5 * M_PI);
 }
 
-// A submapped block whose corner types the mesher cannot submap (a cusp, a
-// slit, or sides that leave a direction without an opposite) is re-typed:
-// every piece start may take type 1, 2 or 3, the block's total turning stays
-// what its singularities need, and among the types that submap the fewest
-// changes win, then the ones nearest the outline's interior angles (the
-// paper's corner rule, Fig. 6: nc by the corner's angle). A dynamic program
-// over the piece starts with the turning so far and the directions used.
-// Returns false when no typing submaps.
-bool make_submappable(Block& b, double tol) {
-  std::vector<const OutlinePiece*> pieces;
-  std::vector<int> types;
-  for (std::size_t s = 0; s < b.sides.size(); ++s) {
-    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
-      pieces.push_back(&b.sides[s].pieces[k]);
-      types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
-    }
-  }
-  if (submappable(types)) return true;
+// Types 1..3 at the piece starts of an outline that turns 4 quarter turns
+// and submaps, fewest changes from `types` first, then nearest the interior
+// angles (the paper's corner rule, Fig. 6: nc by the corner's angle): a
+// dynamic program over the piece starts with the turning so far and the
+// directions used. Empty when no typing submaps.
+std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types, double tol) {
   const int n = static_cast<int>(types.size());
-  int total = 0;
-  for (const int type : types) total += 2 - type;
-  if (total != 4 || n < 4) return false;
+  if (n < 4) return {};  // four convex corners at least
+  std::vector<const OutlinePiece*> refs;
+  for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
   // State: turning so far (offset by n) and the directions used (4 bits).
   const int width = 2 * n + 1;
   const double kInf = std::numeric_limits<double>::infinity();
@@ -188,7 +176,7 @@ bool make_submappable(Block& b, double tol) {
   std::vector<std::vector<int>> from(n + 1, std::vector<int>(width * 16, -1));
   cost[0][n * 16] = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double angle = interior_quarters(pieces, i, types[i], tol);
+    const double angle = interior_quarters(refs, i, types[i], tol);
     for (int state = 0; state < width * 16; ++state) {
       if (cost[i][state] == kInf) continue;
       const int turning = state / 16 - n, used = state % 16;
@@ -208,25 +196,97 @@ bool make_submappable(Block& b, double tol) {
   int best = -1;
   for (int used = 0; used < 16; ++used) {
     const bool balanced = ((used & 1) != 0) == ((used & 4) != 0) && ((used & 2) != 0) == ((used & 8) != 0);
-    const int state = (total + n) * 16 + used;
+    const int state = (4 + n) * 16 + used;
     if (balanced && cost[n][state] < kInf && (best < 0 || cost[n][state] < cost[n][best])) best = state;
   }
-  if (best < 0) return false;
+  if (best < 0) return {};
+  std::vector<int> typing(n);
   for (int i = n, state = best; i > 0; --i) {
-    types[i - 1] = from[i][state] % 4;
+    typing[i - 1] = from[i][state] % 4;
     state = from[i][state] / 4;
   }
+  return typing;
+}
+
+// The two halves of a boundary piece, cut at its middle parameter.
+std::pair<OutlinePiece, OutlinePiece> halves(const FaceModel& face, const OutlinePiece& piece) {
+  const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
+  const double middle = 0.5 * (piece.t_from + piece.t_to);
+  OutlinePiece first = piece, second = piece;
+  first.t_to = second.t_from = middle;
+  const int samples = std::max(2, static_cast<int>(piece.points.size()) / 2);
+  first.points = {piece.points.front()};
+  second.points = {edge_point(e, middle).p};
+  for (int k = 1; k < samples; ++k) {
+    const double f = static_cast<double>(k) / samples;
+    first.points.push_back(edge_point(e, piece.t_from + f * (middle - piece.t_from)).p);
+    second.points.push_back(edge_point(e, middle + f * (piece.t_to - middle)).p);
+  }
+  first.points.push_back(second.points.front());
+  second.points.push_back(piece.points.back());
+  return {first, second};
+}
+
+// A submapped block whose corner types the mesher cannot submap (a cusp, a
+// slit, or sides that leave a direction without an opposite, whose counts
+// would have to be 0) is re-typed at its piece starts (submap_typing). A
+// block with too few piece starts for that gets its boundary pieces cut at
+// their middles, and keeps the cuts where the typing puts a corner.
+// Returns false when no typing submaps.
+bool make_submappable(const FaceModel& face, Block& b, double tol) {
+  std::vector<OutlinePiece> pieces;
+  std::vector<int> types;
+  for (std::size_t s = 0; s < b.sides.size(); ++s) {
+    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
+      pieces.push_back(b.sides[s].pieces[k]);
+      types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+    }
+  }
+  if (submappable(types)) return true;
+  int total = 0;
+  for (const int type : types) total += 2 - type;
+  if (total != 4) return false;
+  std::vector<int> typing = submap_typing(pieces, types, tol);
+  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a middle cut
+  if (typing.empty()) {
+    std::vector<OutlinePiece> finer;
+    std::vector<int> finer_types;
+    cut.clear();
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      finer_types.push_back(types[i]);
+      cut.push_back(false);
+      if (pieces[i].split >= 0 || pieces[i].loop < 0 || std::abs(pieces[i].t_to - pieces[i].t_from) <= 0.0) {
+        finer.push_back(pieces[i]);
+        continue;
+      }
+      auto [first, second] = halves(face, pieces[i]);
+      finer.push_back(first);
+      finer.push_back(second);
+      finer_types.push_back(2);
+      cut.push_back(true);
+    }
+    typing = submap_typing(finer, finer_types, tol);
+    if (typing.empty()) return false;
+    pieces = std::move(finer);
+  }
+  const int n = static_cast<int>(pieces.size());
   int first = 0;
-  while (types[first] == 2) ++first;  // total turning 4 from types 1..3: some corner exists
+  while (typing[first] == 2) ++first;  // a turning of 4 from types 1..3 has corners
   std::vector<BlockCorner> corners;
   std::vector<BlockSide> sides;
   for (int k = 0; k < n; ++k) {
     const int i = (first + k) % n;
-    if (types[i] != 2) {
-      corners.push_back({pieces[i]->points.front(), types[i]});
+    if (typing[i] != 2) {
+      corners.push_back({pieces[i].points.front(), typing[i]});
       sides.emplace_back();
+      sides.back().pieces.push_back(pieces[i]);
+    } else if (cut[i]) {  // an unused middle cut: the two halves are one piece again
+      OutlinePiece& before = sides.back().pieces.back();
+      before.t_to = pieces[i].t_to;
+      before.points.insert(before.points.end(), pieces[i].points.begin() + 1, pieces[i].points.end());
+    } else {
+      sides.back().pieces.push_back(pieces[i]);
     }
-    sides.back().pieces.push_back(*pieces[i]);
   }
   b.corners = std::move(corners);
   b.sides = std::move(sides);
@@ -1801,7 +1861,7 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap && !make_submappable(b, tol_))
+        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_))
           throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
       total += b.area;
