@@ -11,6 +11,7 @@
 #include "face_builders.hpp"
 #include "medial/medial_axis.hpp"
 #include "pipeline/pipeline.hpp"
+#include "quality/quality.hpp"
 #include "singularity/mesh_flow.hpp"
 #include "svg/svg_writer.hpp"
 
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   std::mt19937 rng(20261123);
   int meshed = 0, errors = 0;
   std::map<std::string, int> causes;
+  std::multimap<double, int> worst;  // min scaled Jacobian at order 1 -> face number
   const std::regex numbers("-?[0-9]+(\\.[0-9]+)?(e-?[0-9]+)?");
   for (int number = 0; meshed + errors < faces; ++number) {
     FaceModel face;
@@ -55,7 +57,8 @@ int main(int argc, char** argv) {
           mesh_canvas.save("census_" + std::to_string(number) + "_mesh.svg");
           std::cout << "min scaled Jacobian " << m.quality.min_scaled_jacobian << "\n";
         }
-        mesh_blocks(face, decomposition, options.meshing);
+        const BlockMesh blocks = mesh_blocks(face, decomposition, options.meshing);
+        if (order == 1) worst.emplace(measure_quality(blocks.mesh).min_scaled_jacobian, number);
       } catch (const std::exception& e) {
         std::string what = e.what();
         if (verbose) {
@@ -78,6 +81,14 @@ int main(int argc, char** argv) {
     }
   }
   std::cout << "meshed " << meshed << " errors " << errors << "\n";
+  int below[3] = {0, 0, 0};
+  for (const auto& [jacobian, number] : worst)
+    for (int k = 0; k < 3; ++k) below[k] += jacobian < 0.1 * (k + 1) ? 1 : 0;
+  std::cout << "min scaled Jacobian below 0.1 / 0.2 / 0.3: " << below[0] << " / " << below[1] << " / " << below[2]
+            << "; worst faces:";
+  for (auto it = worst.begin(); it != worst.end() && std::distance(worst.begin(), it) < 8; ++it)
+    std::cout << " " << it->second << " (" << it->first << ")";
+  std::cout << "\n";
   std::multimap<int, std::string, std::greater<int>> sorted;
   for (const auto& [what, count] : causes) sorted.emplace(count, what);
   for (const auto& [count, what] : sorted) std::cout << count << "\t" << what << "\n";
