@@ -148,6 +148,25 @@ TEST(IntervalAssignment, EmptyProblemHasAnEmptyAnswer) {
   EXPECT_TRUE(a.params.empty());
 }
 
+// A notch cut into a block's right side, one interval deep by its goal,
+// beside a bottom one interval wide by its goal: the goals alone put the
+// notch's inner wall onto the block's left side (the lattice folds); with
+// the two sides given as facing, the bottom grows to keep them apart.
+TEST(IntervalAssignment, FacingSidesStayAnIntervalApart) {
+  // Sides: bottom E, right N, notch floor W, notch wall N, notch roof E,
+  // right N, top W, left S.
+  IntervalProblem p = submap({1, 1, 1, 3, 3, 1, 1, 1}, {1, 2, 1.2, 2, 3, 2, 3, 6});
+  IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[0] - a.counts[2], 0);  // the wall at the left side's x
+  p.blocks[0].facing = {{3, 7}};
+  a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_GE(a.counts[0] - a.counts[2], 1);
+  p.blocks[0].facing = {{3, 8}};
+  EXPECT_THROW(assign_intervals(p), std::invalid_argument);
+}
+
 TEST(IntervalAssignment, LShapedSubmap) {
   // Headings 0, 1, 2, 1, 2, 3: the reflex corner 3 turns right.
   const std::vector<int> types{1, 1, 1, 3, 1, 1};

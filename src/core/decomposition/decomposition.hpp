@@ -5,6 +5,7 @@
 // with the part of the face its discs sweep: logically convex polygons that
 // hold one floating singularity, and submappable regions everywhere else.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -67,6 +68,10 @@ struct Block {
   std::vector<Vec2> outline;         // closed, counter-clockwise, first point not repeated
   double area = 0.0;
   int singularity = -1;  // index into Decomposition::singularities: the one floating inside
+  // Submap: pairs (s, t) of sides running opposite ways where t lies across
+  // the block from s (straight into the block from s's middle), which the
+  // submap's lattice must keep at least one interval apart.
+  std::vector<std::pair<int, int>> facing;
 };
 
 // A singularity after merging; fixed ones are corners of blocks, not inside one.

@@ -84,6 +84,11 @@ void validate(const IntervalProblem& problem) {
     for (int type : block.corner_types)
       if (type < 0 || type > 4)
         throw std::invalid_argument(block_name(b) + " has corner type " + std::to_string(type) + " (must be 0..4)");
+    for (const auto& [s, t] : block.facing)
+      if (block.kind != BlockTemplate::Submap || s < 0 || t < 0 || s >= static_cast<int>(sides) ||
+          t >= static_cast<int>(sides))
+        throw std::invalid_argument(block_name(b) + ": facing sides " + std::to_string(s) + " and " +
+                                    std::to_string(t) + " are not two sides of a submapped block");
     for (size_t i = 0; i < sides; ++i) {
       if (block.side_segments[i].empty())
         throw std::invalid_argument(block_name(b) + ": side " + std::to_string(i) + " has no segment");
@@ -297,6 +302,26 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
         for (size_t i = 0; i < sides.size(); ++i) add_to(along[dirs[i]], sides[i], 1.0);
         model.add_equation(difference(along[0], along[2]), 0.0);
         model.add_equation(difference(along[1], along[3]), 0.0);
+        // Facing sides: t at least one interval from s along s's inward
+        // (left) normal, short of it at a cost above any goal's deviation.
+        const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
+        std::vector<LinearExpr> x(sides.size()), y(sides.size());  // where each side starts
+        for (size_t i = 1; i < sides.size(); ++i) {
+          x[i] = x[i - 1], y[i] = y[i - 1];
+          add_to(x[i], sides[i - 1], step_x[dirs[i - 1]]);
+          add_to(y[i], sides[i - 1], step_y[dirs[i - 1]]);
+        }
+        for (const auto& [s, t] : block.facing) {
+          const int normal = (dirs[s] + 1) % 4;
+          LinearExpr gap;
+          add_to(gap, x[t], step_x[normal]);
+          add_to(gap, y[t], step_y[normal]);
+          add_to(gap, x[s], -step_x[normal]);
+          add_to(gap, y[s], -step_y[normal]);
+          gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;  // surplus
+          gap[model.add_column(0.0, kUnbounded, 4.0, false)] += 1.0;  // shortfall
+          model.add_equation(gap, 1.0);
+        }
         break;
       }
       case BlockTemplate::Midpoint: params = add_midpoint(model, sides); break;
