@@ -167,6 +167,27 @@ TEST(IntervalAssignment, FacingSidesStayAnIntervalApart) {
   EXPECT_THROW(assign_intervals(p), std::invalid_argument);
 }
 
+// A rectangle with a rectangular hole, cut once from its left side to the
+// middle of the hole's left wall: the outline runs along the cut both ways,
+// and round the hole between, so the hole's logical outline must close for
+// the two runs to be one line (the goals alone leave it open: its left wall
+// wants 1 + 1 intervals, its right wall 1).
+TEST(IntervalAssignment, CutToAHoleWithCornersIsASlit) {
+  IntervalProblem p;
+  // Segments: bottom, right, top, left upper, the cut, hole left upper, top,
+  // right, bottom, left lower, left lower of the block.
+  for (double goal : {6.0, 6.0, 6.0, 3.0, 2.0, 1.0, 2.0, 1.0, 2.0, 1.0, 3.0}) p.segments.push_back({goal, 1});
+  BlockShape b;
+  b.kind = BlockTemplate::Submap;
+  b.corner_types = {1, 1, 1, 1, 1, 1, 3, 3, 3, 3, 1, 1};
+  b.side_segments = {{0}, {1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {4}, {10}};
+  p.blocks.push_back(b);
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[7], a.counts[5] + a.counts[9]);
+  EXPECT_EQ(a.counts[6], a.counts[8]);
+}
+
 TEST(IntervalAssignment, LShapedSubmap) {
   // Headings 0, 1, 2, 1, 2, 3: the reflex corner 3 turns right.
   const std::vector<int> types{1, 1, 1, 3, 1, 1};

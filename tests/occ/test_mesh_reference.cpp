@@ -56,9 +56,7 @@ std::vector<std::string> all_shared_faces() {
 // Every shared face meshes at a twentieth of its diagonal into a valid mesh
 // whose irregular nodes come only from the singularities, or stops with an
 // error naming the face; the reference faces (no corner sharper than 60
-// degrees) keep a scaled Jacobian of 0.4. Known stop: one real CAD face
-// whose submapped outline overlaps itself for the counts the interval
-// assignment gives (see the README's limits).
+// degrees) keep a scaled Jacobian of 0.4. All of them mesh.
 TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
   int reference_stops = 0, real_stops = 0;
   for (const std::string& path : all_shared_faces()) {
@@ -84,7 +82,7 @@ TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
     }
   }
   EXPECT_EQ(reference_stops, 0);  // of 18
-  EXPECT_LE(real_stops, 1);       // of 11
+  EXPECT_EQ(real_stops, 0);       // of 11
 }
 
 TEST(MeshReference, QuadraticElementsPutMidSideNodesOnTheCurves) {

@@ -293,14 +293,14 @@ bool make_submappable(const FaceModel& face, Block& b, double tol) {
 }
 
 // The side pairs of a submapped block with a reflex corner that face each
-// other across it (Block::facing): from the middle of side s straight into
-// the block, the first side hit, where it runs the opposite way. A block
-// without a reflex corner is a logical rectangle, which cannot fold.
-std::vector<std::pair<int, int>> facing_sides(const Block& b) {
-  std::vector<std::pair<int, int>> pairs;
+// other across it or across something outside it (Block::facing and
+// facing_outside): from the middle of side s straight into (out of) the
+// block, the first side of the block hit, where it runs the opposite way. A
+// block without a reflex corner is a logical rectangle, which cannot fold.
+void find_facing_sides(Block& b) {
   const int m = static_cast<int>(b.sides.size());
   if (m < 4 || std::none_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 3; }))
-    return pairs;
+    return;
   std::vector<int> dirs(m, 0);
   for (int i = 1; i < m; ++i) dirs[i] = ((dirs[i - 1] + 2 - b.corners[i].type) % 4 + 4) % 4;
   std::vector<std::vector<Vec2>> lines(m);
@@ -327,20 +327,23 @@ std::vector<std::pair<int, int>> facing_sides(const Block& b) {
       }
       walked += step;
     }
-    int hit = -1;
-    double nearest = std::numeric_limits<double>::infinity();
-    for (int t = 0; t < m; ++t) {
-      for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
-        const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
-        const double denominator = cross(inward, d);
-        if (std::abs(denominator) <= 1e-12 * norm(d)) continue;
-        const double u = cross(a - middle, d) / denominator, v = cross(a - middle, inward) / denominator;
-        if (u > 1e-9 * length && u < nearest && v >= 0.0 && v <= 1.0) nearest = u, hit = t;
+    for (const bool inside : {true, false}) {
+      const Vec2 ray = inside ? inward : -inward;
+      int hit = -1;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int t = 0; t < m; ++t) {
+        for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
+          const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
+          const double denominator = cross(ray, d);
+          if (std::abs(denominator) <= 1e-12 * norm(d)) continue;
+          const double u = cross(a - middle, d) / denominator, v = cross(a - middle, ray) / denominator;
+          if (u > 1e-9 * length && u < nearest && v >= 0.0 && v <= 1.0) nearest = u, hit = t;
+        }
       }
+      if (hit >= 0 && hit != s && dirs[hit] == (dirs[s] + 2) % 4)
+        (inside ? b.facing : b.facing_outside).emplace_back(s, hit);
     }
-    if (hit >= 0 && hit != s && dirs[hit] == (dirs[s] + 2) % 4) pairs.emplace_back(s, hit);
   }
-  return pairs;
 }
 
 class Decomposer {
@@ -1928,7 +1931,7 @@ class Decomposer {
         if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_))
           throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
-      if (b.kind == BlockKind::Submap && b.singularity < 0) b.facing = facing_sides(b);
+      if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
       total += b.area;
       d.blocks.push_back(std::move(b));
     }
