@@ -294,7 +294,7 @@ bool make_submappable(const FaceModel& face, Block& b, double tol) {
 
 // The side pairs of a submapped block with a reflex corner that face each
 // other across it or across something outside it (Block::facing and
-// facing_outside): from the middle of side s straight into (out of) the
+// facing_outside): from points along side s straight into (out of) the
 // block, the first side of the block hit, where it runs the opposite way. A
 // block without a reflex corner is a logical rectangle, which cannot fold.
 void find_facing_sides(Block& b) {
@@ -310,40 +310,45 @@ void find_facing_sides(Block& b) {
         if (lines[i].empty() || distance(lines[i].back(), p) > 0.0) lines[i].push_back(p);
     }
   }
+  std::set<std::pair<int, int>> inside, outside;
   for (int s = 0; s < m; ++s) {
     const std::vector<Vec2>& line = lines[s];
     double length = 0.0;
     for (std::size_t k = 0; k + 1 < line.size(); ++k) length += distance(line[k], line[k + 1]);
     if (!(length > 0.0)) continue;
-    // The middle of side s and the inward (left) normal there.
-    Vec2 middle, inward;
-    double walked = 0.0;
-    for (std::size_t k = 0; k + 1 < line.size(); ++k) {
-      const double step = distance(line[k], line[k + 1]);
-      if (walked + step >= 0.5 * length && step > 0.0) {
-        middle = line[k] + (line[k + 1] - line[k]) * ((0.5 * length - walked) / step);
-        inward = perp(normalized(line[k + 1] - line[k]));
-        break;
-      }
-      walked += step;
-    }
-    for (const bool inside : {true, false}) {
-      const Vec2 ray = inside ? inward : -inward;
-      int hit = -1;
-      double nearest = std::numeric_limits<double>::infinity();
-      for (int t = 0; t < m; ++t) {
-        for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
-          const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
-          const double denominator = cross(ray, d);
-          if (std::abs(denominator) <= 1e-12 * norm(d)) continue;
-          const double u = cross(a - middle, d) / denominator, v = cross(a - middle, ray) / denominator;
-          if (u > 1e-9 * length && u < nearest && v >= 0.0 && v <= 1.0) nearest = u, hit = t;
+    // Rays from five places along side s (a side across may face only part
+    // of it), along the inward (left) normal there and against it.
+    for (const double fraction : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+      Vec2 from, inward;
+      double walked = 0.0;
+      for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+        const double step = distance(line[k], line[k + 1]);
+        if (walked + step >= fraction * length && step > 0.0) {
+          from = line[k] + (line[k + 1] - line[k]) * ((fraction * length - walked) / step);
+          inward = perp(normalized(line[k + 1] - line[k]));
+          break;
         }
+        walked += step;
       }
-      if (hit >= 0 && hit != s && dirs[hit] == (dirs[s] + 2) % 4)
-        (inside ? b.facing : b.facing_outside).emplace_back(s, hit);
+      for (const bool into : {true, false}) {
+        const Vec2 ray = into ? inward : -inward;
+        int hit = -1;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int t = 0; t < m; ++t) {
+          for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
+            const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
+            const double denominator = cross(ray, d);
+            if (std::abs(denominator) <= 1e-12 * norm(d)) continue;
+            const double u = cross(a - from, d) / denominator, v = cross(a - from, ray) / denominator;
+            if (u > 1e-9 * length && u < nearest && v >= 0.0 && v <= 1.0) nearest = u, hit = t;
+          }
+        }
+        if (hit >= 0 && hit != s && dirs[hit] == (dirs[s] + 2) % 4) (into ? inside : outside).insert({s, hit});
+      }
     }
   }
+  b.facing.assign(inside.begin(), inside.end());
+  b.facing_outside.assign(outside.begin(), outside.end());
 }
 
 class Decomposer {

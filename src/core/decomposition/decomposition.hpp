@@ -69,9 +69,9 @@ struct Block {
   double area = 0.0;
   int singularity = -1;  // index into Decomposition::singularities: the one floating inside
   // Submap: pairs (s, t) of sides running opposite ways where t lies across
-  // the block from s (the first side straight into the block from s's
-  // middle), and where t lies across something outside the block from s
-  // (the first side of the block straight out of it: another block, a hole),
+  // the block from s (the first side straight into the block from a point of
+  // s), and where t lies across something outside the block from s (the
+  // first side of the block straight out of it: another block, a hole),
   // which the submap's lattice must keep at least one interval apart.
   std::vector<std::pair<int, int>> facing, facing_outside;
 };
