@@ -94,8 +94,11 @@ struct Decomposition {
 
 // Decomposes the face. Returns only a decomposition that tiles the face
 // (checked: block areas add up to the face's, every block's corner types
-// close up with the singularities it holds); throws SelfCheckError naming
-// the face and the check when neither the process nor its fall-back passes.
+// close up with the singularities it holds) and whose submap blocks can be
+// submapped (corner types 1 to 3, sides each way balanced by sides the
+// opposite way; blocks the mesh flow types otherwise are re-typed by their
+// angles); throws SelfCheckError naming the face and the check when neither
+// the process nor its fall-backs pass.
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options);
 
