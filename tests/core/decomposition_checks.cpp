@@ -95,6 +95,20 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
       if (block.singularity < 0 && block.corners.size() != 4) problem(name + " is a polygon with no singularity");
     } else if (block.singularity >= 0) {
       problem(name + " is a submap block holding a singularity");
+    } else {
+      // What submapping can mesh: convex, flat or reflex corners only, and
+      // sides running each way that sides run the opposite way (else the
+      // counts there would have to be 0).
+      int direction = 0;
+      bool runs[4] = {false, false, false, false};
+      for (const BlockCorner& c : block.corners) {
+        if (c.type < 1 || c.type > 3)
+          problem(name + " is a submap block with a corner of type " + std::to_string(c.type));
+        direction = ((direction + 2 - c.type) % 4 + 4) % 4;
+        runs[direction] = true;
+      }
+      if (runs[0] != runs[2] || runs[1] != runs[3])
+        problem(name + " is a submap block with sides one way and none the opposite way");
     }
   }
   if (std::abs(total - face.area) > 1e-9 * face.area) {

@@ -77,7 +77,9 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     if (!on_boundary[n]) continue;
     const double off = probe.distance_to_boundary(mesh.nodes[n]);
-    if (off > on_curve)
+    // A face's corner joins its edges' ends within the tolerance the face was read with.
+    const bool at_corner = n < mesh.places.size() && mesh.places[n].face_corner;
+    if (off > (at_corner ? std::max(on_curve, face.tolerance) : on_curve))
       problem("boundary node " + std::to_string(n) + " is " + std::to_string(off) + " off the boundary");
     if (mesh.places[n].loop < 0) problem("boundary node " + std::to_string(n) + " is not marked as on a curve");
   }
@@ -104,8 +106,16 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
   }
   const double expected = face.area / (size * size);
   const double quads = static_cast<double>(mesh.quads.size());
-  if (expected > 20 && (quads < 0.4 * expected || quads > 4.0 * expected)) {
-    problem(std::to_string(mesh.quads.size()) + " elements for area / H^2 = " + std::to_string(expected));
+  // The boundary's own intervals (at least one per edge, at most 45 degrees
+  // of turning each on curves) also set a count: a mapped square with b
+  // boundary intervals has (b / 4)^2 quads, where small holes or thin arms
+  // need more than area / H^2.
+  int boundary_sides = 0;
+  for (const auto& entry : sides) boundary_sides += entry.second == 1 ? 1 : 0;
+  const double from_boundary = 0.0625 * boundary_sides * boundary_sides;
+  if (expected > 20 && (quads < 0.4 * expected || quads > 4.0 * std::max(expected, from_boundary))) {
+    problem(std::to_string(mesh.quads.size()) + " elements for area / H^2 = " + std::to_string(expected) + " and " +
+            std::to_string(boundary_sides) + " boundary intervals");
   }
   return problems;
 }

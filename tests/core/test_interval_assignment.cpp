@@ -167,6 +167,46 @@ TEST(IntervalAssignment, EmptyProblemHasAnEmptyAnswer) {
   EXPECT_TRUE(a.params.empty());
 }
 
+// A notch cut into a block's right side, one interval deep by its goal,
+// beside a bottom one interval wide by its goal: the goals alone put the
+// notch's inner wall onto the block's left side (the lattice folds); with
+// the two sides given as facing, the bottom grows to keep them apart.
+TEST(IntervalAssignment, FacingSidesStayAnIntervalApart) {
+  // Sides: bottom E, right N, notch floor W, notch wall N, notch roof E,
+  // right N, top W, left S.
+  IntervalProblem p = submap({1, 1, 1, 3, 3, 1, 1, 1}, {1, 2, 1.2, 2, 3, 2, 3, 6});
+  IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[0] - a.counts[2], 0);  // the wall at the left side's x
+  p.blocks[0].facing = {{3, 7}};
+  a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_GE(a.counts[0] - a.counts[2], 1);
+  p.blocks[0].facing = {{3, 8}};
+  EXPECT_THROW(assign_intervals(p), std::invalid_argument);
+}
+
+// A rectangle with a rectangular hole, cut once from its left side to the
+// middle of the hole's left wall: the outline runs along the cut both ways,
+// and round the hole between, so the hole's logical outline must close for
+// the two runs to be one line (the goals alone leave it open: its left wall
+// wants 1 + 1 intervals, its right wall 1).
+TEST(IntervalAssignment, CutToAHoleWithCornersIsASlit) {
+  IntervalProblem p;
+  // Segments: bottom, right, top, left upper, the cut, hole left upper, top,
+  // right, bottom, left lower, left lower of the block.
+  for (double goal : {6.0, 6.0, 6.0, 3.0, 2.0, 1.0, 2.0, 1.0, 2.0, 1.0, 3.0}) p.segments.push_back({goal, 1});
+  BlockShape b;
+  b.kind = BlockTemplate::Submap;
+  b.corner_types = {1, 1, 1, 1, 1, 1, 3, 3, 3, 3, 1, 1};
+  b.side_segments = {{0}, {1}, {2}, {3}, {4}, {5}, {6}, {7}, {8}, {9}, {4}, {10}};
+  p.blocks.push_back(b);
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_EQ(a.counts[7], a.counts[5] + a.counts[9]);
+  EXPECT_EQ(a.counts[6], a.counts[8]);
+}
+
 TEST(IntervalAssignment, LShapedSubmap) {
   // Headings 0, 1, 2, 1, 2, 3: the reflex corner 3 turns right.
   const std::vector<int> types{1, 1, 1, 3, 1, 1};

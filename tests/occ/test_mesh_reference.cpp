@@ -56,9 +56,7 @@ std::vector<std::string> all_shared_faces() {
 // Every shared face meshes at a twentieth of its diagonal into a valid mesh
 // whose irregular nodes come only from the singularities, or stops with an
 // error naming the face; the reference faces (no corner sharper than 60
-// degrees) keep a scaled Jacobian of 0.4. Known stops: blocks with cusp
-// (type 0) or slit (type 4) corners, and blocks whose submap or template
-// conditions no counts satisfy (see the README's limits).
+// degrees) keep a scaled Jacobian of 0.4. All of them mesh.
 TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
   int reference_stops = 0, real_stops = 0;
   for (const std::string& path : all_shared_faces()) {
@@ -83,8 +81,8 @@ TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
       EXPECT_GE(m.quality.min_scaled_jacobian, 0.4) << path;
     }
   }
-  EXPECT_LE(reference_stops, 1);  // of 18
-  EXPECT_LE(real_stops, 7);       // of 11
+  EXPECT_EQ(reference_stops, 0);  // of 18
+  EXPECT_EQ(real_stops, 0);       // of 11
 }
 
 TEST(MeshReference, QuadraticElementsPutMidSideNodesOnTheCurves) {

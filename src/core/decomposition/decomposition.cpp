@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -127,6 +128,229 @@ struct Outline {
   int component = -1;
 };
 
+// Whether submapping can mesh a block with these types at its piece starts
+// (2 where no corner): only convex, flat and reflex corners, and every
+// direction its sides run in has sides running the opposite way, or their
+// counts would have to be 0.
+bool submappable(const std::vector<int>& types) {
+  int direction = 0;
+  bool used[4] = {false, false, false, false};
+  for (const int type : types) {
+    if (type < 1 || type > 3) return false;
+    direction = ((direction + 2 - type) % 4 + 4) % 4;
+    used[direction] = true;
+  }
+  return used[0] == used[2] && used[1] == used[3];
+}
+
+// The interior angle of an outline at the start of piece i, in quarter turns
+// (0 a cusp, 2 straight on, 4 a slit); `type` says which way a reversal goes.
+double interior_quarters(const std::vector<const OutlinePiece*>& pieces, std::size_t i, int type, double tol) {
+  const OutlinePiece& before = *pieces[(i + pieces.size() - 1) % pieces.size()];
+  const OutlinePiece& after = *pieces[i];
+  Vec2 in{0, 0}, out{0, 0};
+  for (std::size_t k = before.points.size(); k-- > 1 && norm(in) <= tol;)
+    in = before.points.back() - before.points[k - 1];
+  for (std::size_t k = 1; k < after.points.size() && norm(out) <= tol; ++k)
+    out = after.points[k] - after.points.front();
+  if (norm(in) <= tol || norm(out) <= tol) return type;
+  double turn = std::atan2(cross(in, out), dot(in, out));
+  if (std::abs(turn) > 0.9 * M_PI) turn = type < 2 ? std::abs(turn) : -std::abs(turn);
+  return 2.0 - turn / (0.5 * M_PI);
+}
+
+// Types 1..3 at the piece starts of an outline that turns 4 quarter turns
+// and submaps, fewest changes from `types` first, then nearest the interior
+// angles (the paper's corner rule, Fig. 6: nc by the corner's angle): a
+// dynamic program over the piece starts with the turning so far and the
+// directions used. Empty when no typing submaps.
+std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types, double tol) {
+  const int n = static_cast<int>(types.size());
+  if (n < 4) return {};  // four convex corners at least
+  std::vector<const OutlinePiece*> refs;
+  for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
+  // State: turning so far (offset by n) and the directions used (4 bits).
+  const int width = 2 * n + 1;
+  const double kInf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> cost(n + 1, std::vector<double>(width * 16, kInf));
+  std::vector<std::vector<int>> from(n + 1, std::vector<int>(width * 16, -1));
+  cost[0][n * 16] = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double angle = interior_quarters(refs, i, types[i], tol);
+    for (int state = 0; state < width * 16; ++state) {
+      if (cost[i][state] == kInf) continue;
+      const int turning = state / 16 - n, used = state % 16;
+      for (int type = 1; type <= 3; ++type) {
+        const int next_turning = turning + 2 - type;
+        if (next_turning < -n || next_turning > n) continue;
+        const int direction = ((next_turning % 4) + 4) % 4;
+        const int next = (next_turning + n) * 16 + (used | (1 << direction));
+        const double c = cost[i][state] + (type != types[i] ? 10.0 : 0.0) + std::abs(angle - type);
+        if (c < cost[i + 1][next]) {
+          cost[i + 1][next] = c;
+          from[i + 1][next] = state * 4 + type;
+        }
+      }
+    }
+  }
+  int best = -1;
+  for (int used = 0; used < 16; ++used) {
+    const bool balanced = ((used & 1) != 0) == ((used & 4) != 0) && ((used & 2) != 0) == ((used & 8) != 0);
+    const int state = (4 + n) * 16 + used;
+    if (balanced && cost[n][state] < kInf && (best < 0 || cost[n][state] < cost[n][best])) best = state;
+  }
+  if (best < 0) return {};
+  std::vector<int> typing(n);
+  for (int i = n, state = best; i > 0; --i) {
+    typing[i - 1] = from[i][state] % 4;
+    state = from[i][state] / 4;
+  }
+  return typing;
+}
+
+// The two halves of a boundary piece, cut at its middle parameter.
+std::pair<OutlinePiece, OutlinePiece> halves(const FaceModel& face, const OutlinePiece& piece) {
+  const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
+  const double middle = 0.5 * (piece.t_from + piece.t_to);
+  OutlinePiece first = piece, second = piece;
+  first.t_to = second.t_from = middle;
+  const int samples = std::max(2, static_cast<int>(piece.points.size()) / 2);
+  first.points = {piece.points.front()};
+  second.points = {edge_point(e, middle).p};
+  for (int k = 1; k < samples; ++k) {
+    const double f = static_cast<double>(k) / samples;
+    first.points.push_back(edge_point(e, piece.t_from + f * (middle - piece.t_from)).p);
+    second.points.push_back(edge_point(e, middle + f * (piece.t_to - middle)).p);
+  }
+  first.points.push_back(second.points.front());
+  second.points.push_back(piece.points.back());
+  return {first, second};
+}
+
+// A submapped block whose corner types the mesher cannot submap (a cusp, a
+// slit, or sides that leave a direction without an opposite, whose counts
+// would have to be 0) is re-typed at its piece starts (submap_typing). A
+// block with too few piece starts for that gets its boundary pieces cut at
+// their middles, and keeps the cuts where the typing puts a corner.
+// Returns false when no typing submaps.
+bool make_submappable(const FaceModel& face, Block& b, double tol) {
+  std::vector<OutlinePiece> pieces;
+  std::vector<int> types;
+  for (std::size_t s = 0; s < b.sides.size(); ++s) {
+    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
+      pieces.push_back(b.sides[s].pieces[k]);
+      types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+    }
+  }
+  int total = 0;
+  for (const int type : types) total += 2 - type;
+  if (total == 4 && submappable(types)) return true;
+  std::vector<int> typing = submap_typing(pieces, types, tol);
+  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a middle cut
+  if (typing.empty()) {
+    std::vector<OutlinePiece> finer;
+    std::vector<int> finer_types;
+    cut.clear();
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      finer_types.push_back(types[i]);
+      cut.push_back(false);
+      if (pieces[i].split >= 0 || pieces[i].loop < 0 || std::abs(pieces[i].t_to - pieces[i].t_from) <= 0.0) {
+        finer.push_back(pieces[i]);
+        continue;
+      }
+      auto [first, second] = halves(face, pieces[i]);
+      finer.push_back(first);
+      finer.push_back(second);
+      finer_types.push_back(2);
+      cut.push_back(true);
+    }
+    typing = submap_typing(finer, finer_types, tol);
+    if (typing.empty()) return false;
+    pieces = std::move(finer);
+  }
+  const int n = static_cast<int>(pieces.size());
+  int first = 0;
+  while (typing[first] == 2) ++first;  // a turning of 4 from types 1..3 has corners
+  std::vector<BlockCorner> corners;
+  std::vector<BlockSide> sides;
+  for (int k = 0; k < n; ++k) {
+    const int i = (first + k) % n;
+    if (typing[i] != 2) {
+      corners.push_back({pieces[i].points.front(), typing[i]});
+      sides.emplace_back();
+      sides.back().pieces.push_back(pieces[i]);
+    } else if (cut[i]) {  // an unused middle cut: the two halves are one piece again
+      OutlinePiece& before = sides.back().pieces.back();
+      before.t_to = pieces[i].t_to;
+      before.points.insert(before.points.end(), pieces[i].points.begin() + 1, pieces[i].points.end());
+    } else {
+      sides.back().pieces.push_back(pieces[i]);
+    }
+  }
+  b.corners = std::move(corners);
+  b.sides = std::move(sides);
+  return true;
+}
+
+// The side pairs of a submapped block with a reflex corner that face each
+// other across it or across something outside it (Block::facing and
+// facing_outside): from points along side s straight into (out of) the
+// block, the first side of the block hit, where it runs the opposite way. A
+// block without a reflex corner is a logical rectangle, which cannot fold.
+void find_facing_sides(Block& b) {
+  const int m = static_cast<int>(b.sides.size());
+  if (m < 4 || std::none_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 3; }))
+    return;
+  std::vector<int> dirs(m, 0);
+  for (int i = 1; i < m; ++i) dirs[i] = ((dirs[i - 1] + 2 - b.corners[i].type) % 4 + 4) % 4;
+  std::vector<std::vector<Vec2>> lines(m);
+  for (int i = 0; i < m; ++i) {
+    for (const OutlinePiece& piece : b.sides[i].pieces) {
+      for (const Vec2 p : piece.points)
+        if (lines[i].empty() || distance(lines[i].back(), p) > 0.0) lines[i].push_back(p);
+    }
+  }
+  std::set<std::pair<int, int>> inside, outside;
+  for (int s = 0; s < m; ++s) {
+    const std::vector<Vec2>& line = lines[s];
+    double length = 0.0;
+    for (std::size_t k = 0; k + 1 < line.size(); ++k) length += distance(line[k], line[k + 1]);
+    if (!(length > 0.0)) continue;
+    // Rays from five places along side s (a side across may face only part
+    // of it), along the inward (left) normal there and against it.
+    for (const double fraction : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+      Vec2 from, inward;
+      double walked = 0.0;
+      for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+        const double step = distance(line[k], line[k + 1]);
+        if (walked + step >= fraction * length && step > 0.0) {
+          from = line[k] + (line[k + 1] - line[k]) * ((fraction * length - walked) / step);
+          inward = perp(normalized(line[k + 1] - line[k]));
+          break;
+        }
+        walked += step;
+      }
+      for (const bool into : {true, false}) {
+        const Vec2 ray = into ? inward : -inward;
+        int hit = -1;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int t = 0; t < m; ++t) {
+          for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
+            const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
+            const double denominator = cross(ray, d);
+            if (std::abs(denominator) <= 1e-12 * norm(d)) continue;
+            const double u = cross(a - from, d) / denominator, v = cross(a - from, ray) / denominator;
+            if (u > 1e-9 * length && u < nearest && v >= 0.0 && v <= 1.0) nearest = u, hit = t;
+          }
+        }
+        if (hit >= 0 && hit != s && dirs[hit] == (dirs[s] + 2) % 4) (into ? inside : outside).insert({s, hit});
+      }
+    }
+  }
+  b.facing.assign(inside.begin(), inside.end());
+  b.facing_outside.assign(outside.begin(), outside.end());
+}
+
 class Decomposer {
  public:
   Decomposer(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow, const DecompositionOptions& options)
@@ -166,6 +390,17 @@ class Decomposer {
           if (first.empty()) first = failure.what();
         }
       }
+    }
+    // Last: blocks whose flow numbers do not close up (the flow's local
+    // bookkeeping) are typed by their angles instead, if they hold no
+    // floating singularity.
+    lenient_ = true;
+    strict_end_touches_ = false;
+    try {
+      Decomposition d = attempt(false);
+      d.notes.push_back("every attempt failed a self-check (" + first + ")");
+      return d;
+    } catch (const SelfCheckFailure&) {
     }
     throw SelfCheckError(face_.name, first);
   }
@@ -1700,7 +1935,10 @@ class Decomposer {
       if (splits_cross(b)) throw SelfCheckFailure("decomposition: a block's outline crosses itself");
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
-      if (sum != 4 + k_inside[o.component]) {
+      if (sum != 4 + k_inside[o.component] && lenient_ && unit_in.count(o.component) == 0 &&
+          make_submappable(face_, b, tol_)) {
+        d.notes.push_back("a block's corner types from the mesh flow did not close up; it was re-typed by its angles");
+      } else if (sum != 4 + k_inside[o.component]) {
         throw SelfCheckFailure("decomposition: the corners of a block sum to " + std::to_string(sum) +
                                " quarter turns, its singularities need " + std::to_string(4 + k_inside[o.component]));
       }
@@ -1717,7 +1955,10 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
+        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_))
+          throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
+      if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
       total += b.area;
       d.blocks.push_back(std::move(b));
     }
@@ -1789,6 +2030,7 @@ class Decomposer {
   double tol_;
   std::map<std::pair<int, int>, int> corner_of_;
   bool strict_end_touches_ = false;  // see end_place
+  bool lenient_ = false;             // see run
   std::vector<int> rep_;             // per medial vertex, the one it stands with (coincident junctions)
   std::vector<bool> contracted_;     // per medial edge: of no length, its ends one vertex
   std::vector<Location> locations_;

@@ -5,6 +5,7 @@
 // with the part of the face its discs sweep: logically convex polygons that
 // hold one floating singularity, and submappable regions everywhere else.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -67,6 +68,12 @@ struct Block {
   std::vector<Vec2> outline;         // closed, counter-clockwise, first point not repeated
   double area = 0.0;
   int singularity = -1;  // index into Decomposition::singularities: the one floating inside
+  // Submap: pairs (s, t) of sides running opposite ways where t lies across
+  // the block from s (the first side straight into the block from a point of
+  // s), and where t lies across something outside the block from s (the
+  // first side of the block straight out of it: another block, a hole),
+  // which the submap's lattice must keep at least one interval apart.
+  std::vector<std::pair<int, int>> facing, facing_outside;
 };
 
 // A singularity after merging; fixed ones are corners of blocks, not inside one.
@@ -87,8 +94,11 @@ struct Decomposition {
 
 // Decomposes the face. Returns only a decomposition that tiles the face
 // (checked: block areas add up to the face's, every block's corner types
-// close up with the singularities it holds); throws SelfCheckError naming
-// the face and the check when neither the process nor its fall-back passes.
+// close up with the singularities it holds) and whose submap blocks can be
+// submapped (corner types 1 to 3, sides each way balanced by sides the
+// opposite way; blocks the mesh flow types otherwise are re-typed by their
+// angles); throws SelfCheckError naming the face and the check when neither
+// the process nor its fall-backs pass.
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options);
 

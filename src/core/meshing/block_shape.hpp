@@ -3,6 +3,7 @@
 // logical sides (each a chain of segments, a segment being one piece of
 // boundary edge or one split, shared by every block that uses it), and the
 // meaning of each template's integer parameters.
+#include <utility>
 #include <vector>
 
 namespace mm {
@@ -23,6 +24,11 @@ struct BlockShape {
   BlockTemplate kind = BlockTemplate::Submap;
   std::vector<int> corner_types;
   std::vector<std::vector<int>> side_segments;  // segment ids along each side
+  // Submap: side pairs (s, t) facing each other across the block, and
+  // across something outside it; interval assignment keeps t at least one
+  // interval from s along s's inward (outward) normal (a soft condition: the
+  // lattice outline must not fold onto itself).
+  std::vector<std::pair<int, int>> facing, facing_outside;
 };
 
 // Template parameters (BlockIntervals::params), n_i the intervals of side i:

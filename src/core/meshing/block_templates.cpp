@@ -474,7 +474,9 @@ void fill_submap(Filler& f, const BlockShape& shape, const Chain& loop, const st
   auto node = [&](int i, int j) -> int& { return id[(j - y_min) * (width + 1) + (i - x_min)]; };
   for (int k = 0; k < n; ++k) {
     int& slot = node(logical[k][0], logical[k][1]);
-    if (slot >= 0)
+    // A block that runs along a split both ways (one cut to a hole) meets
+    // the split's nodes twice, at the same logical places: a slit.
+    if (slot >= 0 && loop[slot] != loop[k])
       fail(f.block, "the submapped logical outline overlaps itself (outline nodes " + std::to_string(slot) + " and " +
                         std::to_string(k) + " meet)");
     slot = k;

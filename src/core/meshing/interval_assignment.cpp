@@ -12,6 +12,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -84,6 +85,13 @@ void validate(const IntervalProblem& problem) {
     for (int type : block.corner_types)
       if (type < 0 || type > 4)
         throw std::invalid_argument(block_name(b) + " has corner type " + std::to_string(type) + " (must be 0..4)");
+    std::vector<std::pair<int, int>> pairs = block.facing;
+    pairs.insert(pairs.end(), block.facing_outside.begin(), block.facing_outside.end());
+    for (const auto& [s, t] : pairs)
+      if (block.kind != BlockTemplate::Submap || s < 0 || t < 0 || s >= static_cast<int>(sides) ||
+          t >= static_cast<int>(sides))
+        throw std::invalid_argument(block_name(b) + ": facing sides " + std::to_string(s) + " and " +
+                                    std::to_string(t) + " are not two sides of a submapped block");
     for (size_t i = 0; i < sides; ++i) {
       if (block.side_segments[i].empty())
         throw std::invalid_argument(block_name(b) + ": side " + std::to_string(i) + " has no segment");
@@ -305,6 +313,60 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
         for (size_t i = 0; i < sides.size(); ++i) add_to(along[dirs[i]], sides[i], 1.0);
         model.add_equation(difference(along[0], along[2]), 0.0);
         model.add_equation(difference(along[1], along[3]), 0.0);
+        // Facing sides: t at least one interval from s along s's inward
+        // (left) normal, or its outward one for sides facing across the
+        // outside, short of it at a cost above any goal's deviation.
+        const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
+        std::vector<LinearExpr> x(sides.size()), y(sides.size());  // where each side starts
+        for (size_t i = 1; i < sides.size(); ++i) {
+          x[i] = x[i - 1], y[i] = y[i - 1];
+          add_to(x[i], sides[i - 1], step_x[dirs[i - 1]]);
+          add_to(y[i], sides[i - 1], step_y[dirs[i - 1]]);
+        }
+        std::vector<std::tuple<int, int, int>> apart;  // side, other side, the normal's direction
+        for (const auto& [s, t] : block.facing) apart.emplace_back(s, t, (dirs[s] + 1) % 4);
+        for (const auto& [s, t] : block.facing_outside) apart.emplace_back(s, t, (dirs[s] + 3) % 4);
+        for (const auto& [s, t, normal] : apart) {
+          LinearExpr gap;
+          add_to(gap, x[t], step_x[normal]);
+          add_to(gap, y[t], step_y[normal]);
+          add_to(gap, x[s], -step_x[normal]);
+          add_to(gap, y[s], -step_y[normal]);
+          gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;  // surplus
+          gap[model.add_column(0.0, kUnbounded, 4.0, false)] += 1.0;  // shortfall
+          model.add_equation(gap, 1.0);
+        }
+        // A segment the outline runs along twice (a split to a hole) whose
+        // outline between the two runs turns a full clockwise round (a hole
+        // with corners) is a slit: its two runs must be one logical line,
+        // so the round between them closes (softly, like facing sides).
+        const auto place = [&](size_t side, size_t upto) {  // after the first `upto` segments of the side
+          LinearExpr px = x[side], py = y[side];
+          for (size_t k = 0; k < upto; ++k) {
+            px[built.count_columns[block.side_segments[side][k]]] += step_x[dirs[side]];
+            py[built.count_columns[block.side_segments[side][k]]] += step_y[dirs[side]];
+          }
+          return std::make_pair(px, py);
+        };
+        for (size_t i = 0; i < sides.size(); ++i) {
+          for (size_t a = 0; a < block.side_segments[i].size(); ++a) {
+            for (size_t j = i + 1; j < sides.size(); ++j) {
+              const auto& later = block.side_segments[j];
+              const auto found = std::find(later.begin(), later.end(), block.side_segments[i][a]);
+              if (found == later.end()) continue;
+              int turning = 0;
+              for (size_t k = i + 1; k < j; ++k) turning += 2 - block.corner_types[k];
+              turning += 2 - block.corner_types[j];
+              // The arrival and departure corners' +1 each and the round's -4,
+              // between the runs or (6 = 4 + 2) round the rest of the outline.
+              if (turning != -2 && turning != 6) continue;
+              const auto [x0, y0] = place(i, a + 1);
+              const auto [x1, y1] = place(j, static_cast<size_t>(found - later.begin()));
+              model.add_deviation(difference(x1, x0), 0.0, 4.0);
+              model.add_deviation(difference(y1, y0), 0.0, 4.0);
+            }
+          }
+        }
         break;
       }
       case BlockTemplate::Midpoint: params = add_midpoint(model, sides); break;

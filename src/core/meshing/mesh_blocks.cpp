@@ -337,6 +337,8 @@ class BlockMesher {
       BlockShape shape;
       shape.kind = template_of(block, static_cast<int>(b));
       for (const BlockCorner& c : block.corners) shape.corner_types.push_back(c.type);
+      shape.facing = block.facing;
+      shape.facing_outside = block.facing_outside;
       std::vector<std::vector<PieceUse>> sides;
       for (const BlockSide& side : block.sides) {
         std::vector<PieceUse> uses;

@@ -1,0 +1,95 @@
+// mesh_census: the random faces of test_meshing.cpp (same generator, same
+// sizes) through the whole pipeline, failures counted by their message with
+// face names and numbers replaced, so the biggest causes show first.
+//   mesh_census [FACES] [-v]
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <random>
+#include <regex>
+
+#include "face_builders.hpp"
+#include "medial/medial_axis.hpp"
+#include "pipeline/pipeline.hpp"
+#include "quality/quality.hpp"
+#include "singularity/mesh_flow.hpp"
+#include "svg/svg_writer.hpp"
+
+int main(int argc, char** argv) {
+  using namespace mm;
+  const int faces = argc > 1 ? std::atoi(argv[1]) : 300;
+  const bool verbose = argc > 2 && std::strcmp(argv[2], "-v") == 0;
+  const int picture = argc > 3 ? std::atoi(argv[3]) : -1;  // with -v: draws this face to census_N.svg
+  std::mt19937 rng(20261123);
+  int meshed = 0, errors = 0;
+  std::map<std::string, int> causes;
+  std::multimap<double, int> worst;  // min scaled Jacobian at order 1 -> face number
+  const std::regex numbers("-?[0-9]+(\\.[0-9]+)?(e-?[0-9]+)?");
+  for (int number = 0; meshed + errors < faces; ++number) {
+    FaceModel face;
+    try {
+      face = number % 3 == 2 ? test::random_notched_face(rng, number) : test::random_face(rng, number);
+    } catch (const InputError&) {
+      continue;
+    }
+    for (const int order : {1, 2}) {
+      PipelineOptions options;
+      options.meshing.size = (number % 2 ? 0.03 : 0.08) * face.size;
+      options.meshing.order = order;
+      Decomposition decomposition;
+      try {
+        const MedialAxis axis = compute_medial_axis(face);
+        const MeshFlow flow = compute_mesh_flow(face, axis);
+        decomposition = decompose(face, axis, flow, DecompositionOptions{});
+        if (number == picture && order == 1) {
+          SvgCanvas canvas(bounding_box(face), 900);
+          draw_decomposition(canvas, face, axis, decomposition);
+          for (const Block& block : decomposition.blocks) {
+            Vec2 c{0, 0};
+            for (const Vec2& q : block.outline) c = c + q * (1.0 / block.outline.size());
+            for (const auto& corner : block.corners)
+              canvas.text(corner.p + (c - corner.p) * 0.15, std::to_string(corner.type), 11, "fill:#000");
+          }
+          canvas.save("census_" + std::to_string(number) + ".svg");
+          const MeshedFace m = mesh_face(face, options);
+          SvgCanvas mesh_canvas(bounding_box(face), 900);
+          draw_quad_mesh(mesh_canvas, face, m.decomposition, m.blocks.mesh, m.quality);
+          mesh_canvas.save("census_" + std::to_string(number) + "_mesh.svg");
+          std::cout << "min scaled Jacobian " << m.quality.min_scaled_jacobian << "\n";
+        }
+        const BlockMesh blocks = mesh_blocks(face, decomposition, options.meshing);
+        if (order == 1) worst.emplace(measure_quality(blocks.mesh).min_scaled_jacobian, number);
+      } catch (const std::exception& e) {
+        std::string what = e.what();
+        if (verbose) {
+          std::cout << number << " order " << order << ": " << what << "\n";
+          for (std::size_t b = 0; b < decomposition.blocks.size(); ++b) {
+            const Block& block = decomposition.blocks[b];
+            std::cout << "  block " << b << (block.kind == BlockKind::Polygon ? " polygon" : " submap") << " k "
+                      << (block.singularity >= 0 ? decomposition.singularities[block.singularity].k : 0) << " corners";
+            for (const auto& c : block.corners) std::cout << " " << c.type;
+            std::cout << "\n";
+          }
+        }
+        const auto colon = what.find(face.name);
+        if (colon != std::string::npos) what.erase(colon, face.name.size());
+        ++causes[std::regex_replace(what, numbers, "#")];
+        ++errors;
+        break;
+      }
+      if (order == 2) ++meshed;
+    }
+  }
+  std::cout << "meshed " << meshed << " errors " << errors << "\n";
+  int below[3] = {0, 0, 0};
+  for (const auto& [jacobian, number] : worst)
+    for (int k = 0; k < 3; ++k) below[k] += jacobian < 0.1 * (k + 1) ? 1 : 0;
+  std::cout << "min scaled Jacobian below 0.1 / 0.2 / 0.3: " << below[0] << " / " << below[1] << " / " << below[2]
+            << "; worst faces:";
+  for (auto it = worst.begin(); it != worst.end() && std::distance(worst.begin(), it) < 8; ++it)
+    std::cout << " " << it->second << " (" << it->first << ")";
+  std::cout << "\n";
+  std::multimap<int, std::string, std::greater<int>> sorted;
+  for (const auto& [what, count] : causes) sorted.emplace(count, what);
+  for (const auto& [count, what] : sorted) std::cout << count << "\t" << what << "\n";
+}
