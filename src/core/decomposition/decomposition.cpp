@@ -1734,7 +1734,7 @@ class Decomposer {
   // those pieces are marked as starting at one.
   std::vector<OutlinePiece> range_pieces(const Item& it, std::vector<bool>& starts_at_virtual, bool sampled) const {
     std::vector<OutlinePiece> result;
-    if (!it.full && distance(it.a.point, it.b.point) <= tol_) return result;
+    if (!it.full && distance(it.a.point, it.b.point) <= sliver_length()) return result;
     const Loop& loop = face_.loops[it.a.loop];
     const int n = static_cast<int>(loop.edges.size());
     const double pa = loop_position(it.a);
@@ -1781,13 +1781,18 @@ class Decomposer {
     return result;
   }
 
+  // Boundary between two split ends, or between a split end and a loop
+  // vertex, shorter than this is no piece: one interval there would put two
+  // nodes on one point.
+  double sliver_length() const { return 1e-6 * face_.size; }
+
   // A split that ends a hair's breadth before a loop vertex (on a circle's
   // seam, say) leaves a piece of next to no length between them: one
   // interval there would put two nodes on one point. Such a piece goes, and
   // its neighbour reaches the split's end instead.
   void drop_slivers_at_ends(std::vector<OutlinePiece>& pieces, std::vector<bool>& starts_at_virtual,
                             const Item& it) const {
-    const double sliver = 1e-6 * face_.size;
+    const double sliver = sliver_length();
     const auto length = [](const OutlinePiece& p) { return distance(p.points.front(), p.points.back()); };
     const std::size_t first = starts_at_virtual.size() - pieces.size();
     if (pieces.size() > 1 && length(pieces.front()) <= sliver && !starts_at_virtual[first + 1]) {
@@ -2017,7 +2022,9 @@ class Decomposer {
         if (b.outline.empty() || distance(b.outline.back(), piece.points[j]) > tol_)
           b.outline.push_back(piece.points[j]);
       }
-      b.area += piece_area(piece, ref);
+      // Consecutive pieces meet to the sliver length, not exactly: the gap's chord counts too.
+      const Vec2 previous_end = flat.pieces[(i + count - 1) % count].points.back();
+      b.area += 0.5 * cross(previous_end - ref, piece.points.front() - previous_end) + piece_area(piece, ref);
     }
     return b;
   }

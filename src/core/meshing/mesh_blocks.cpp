@@ -662,9 +662,11 @@ class BlockMesher {
       for (int i = 0; i < 4; ++i) {
         const int a = q[i];
         const int b = q[(i + 1) % 4];
-        // Nodes closer than the face's own tolerance are one point to CAD and to a solver.
-        if (a == b || distance(mesh_.nodes[a], mesh_.nodes[b]) <= face_.tolerance)
-          fail("an element has a collapsed side at " + at(mesh_.nodes[a]));
+        // A side a ten-millionth of the face long is a collapsed element to a
+        // solver (not the face's CAD tolerance: loose on some real parts).
+        if (a == b || distance(mesh_.nodes[a], mesh_.nodes[b]) <= 1e-7 * face_.size)
+          fail("an element has a collapsed side (" + std::to_string(distance(mesh_.nodes[a], mesh_.nodes[b])) +
+               " long) at " + at(mesh_.nodes[a]));
         ++uses[{std::min(a, b), std::max(a, b)}];
       }
     }
