@@ -323,6 +323,26 @@ TEST(BlockTemplates, SubmappedLUT) {
   expect_submap(polygon_outline(t_shape, {3, 4, 2, 4, 2, 2, 7, 2}), t_types, 7 * 2 + 2 * 4, "T3");
 }
 
+// The pentagon beside a plate's hole (a quarter of plate_with_hole): its
+// midpoint subdivision by transfinite interpolation folds along the arc once
+// the counts are fine, so the block must come out of the harmonic layout.
+TEST(BlockTemplates, FoldingMidpointFillFallsBackToTheHarmonicLayout) {
+  const auto line = [](Vec2 a, Vec2 b) { return [a, b](double t) { return a + t * (b - a); }; };
+  const auto arc = [](double t) {
+    const double angle = -0.5 * kPi - 0.5 * kPi * t;
+    return Vec2{std::cos(angle), std::sin(angle)};
+  };
+  const std::vector<int> c{100, 57, 1, 100, 100};
+  std::vector<int> counts(5);
+  for (int i = 0; i < 5; ++i) counts[i] = c[(i + 4) % 5] + c[(i + 1) % 5];
+  Outlined o = curve_outline(
+      {line({-2, -2}, {0, -2}), line({0, -2}, {0, -1}), arc, line({-1, 0}, {-2, 0}), line({-2, 0}, {-2, -2})}, counts);
+  fill_block(shape_of(BlockTemplate::Midpoint, {1, 1, 1, 1, 1}), c, o.outline, 3, o.mesh);
+  const Checked checked = check_block(o, 3, "plate_pentagon");
+  EXPECT_GT(checked.min_scaled_jacobian, 0.3);
+  EXPECT_EQ(irregular(checked), 1);
+}
+
 void expect_error(Outlined o, const BlockShape& shape, const std::vector<int>& params, int block,
                   const std::string& wanted) {
   try {
