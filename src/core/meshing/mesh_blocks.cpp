@@ -130,7 +130,7 @@ double worst_corner(const QuadMesh& mesh, const std::array<int, 4>& q) {
     const Vec2 p = mesh.nodes[q[i]];
     const Vec2 next = mesh.nodes[q[(i + 1) % 4]] - p;
     const Vec2 prev = mesh.nodes[q[(i + 3) % 4]] - p;
-    const double lengths = norm(next) * norm(prev);
+    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
     worst = std::min(worst, lengths > 0.0 ? cross(next, prev) / lengths : -1.0);
   }
   return worst;
@@ -513,38 +513,61 @@ class BlockMesher {
 
   // The mesh's own checks: conformity, orientation, area.
   void check_mesh() const {
-    std::map<std::pair<int, int>, int> uses;
+    // Each node's quads, so that the quads on a side are found next to it
+    // (linear in the mesh: no map of all sides).
+    const std::size_t nodes = mesh_.nodes.size();
+    std::vector<int> first(nodes + 1, 0);
+    for (const auto& q : mesh_.quads)
+      for (int n : q) ++first[n + 1];
+    for (std::size_t n = 0; n < nodes; ++n) first[n + 1] += first[n];
+    std::vector<int> quads_at(first[nodes]), fill(first.begin(), first.end() - 1);
+    for (std::size_t e = 0; e < mesh_.quads.size(); ++e)
+      for (int n : mesh_.quads[e]) quads_at[fill[n]++] = static_cast<int>(e);
+    const auto quads_on_side = [&](int a, int b) {
+      int count = 0;
+      for (int k = first[a]; k < first[a + 1]; ++k) {
+        const auto& q = mesh_.quads[quads_at[k]];
+        for (int i = 0; i < 4; ++i)
+          if (q[i] == a && (q[(i + 1) % 4] == b || q[(i + 3) % 4] == b)) ++count;
+      }
+      return count;
+    };
+    // The outer sides are exactly the boundary's intervals, each once: with
+    // every element turning counter-clockwise, the elements then cover the
+    // face once (the mapping's degree is the boundary's winding number).
+    std::vector<std::pair<int, int>> boundary_intervals;
+    for (const Segment& s : segments_) {
+      if (s.split >= 0) continue;
+      for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k)
+        boundary_intervals.emplace_back(std::min(s.nodes[k], s.nodes[k + 1]), std::max(s.nodes[k], s.nodes[k + 1]));
+    }
+    std::sort(boundary_intervals.begin(), boundary_intervals.end());
+    std::vector<char> interval_used(boundary_intervals.size(), 0), on_boundary_interval(nodes, 0);
+    for (const auto& [a, b] : boundary_intervals) on_boundary_interval[a] = on_boundary_interval[b] = 1;
     for (const auto& q : mesh_.quads) {
       for (int i = 0; i < 4; ++i) {
         const int a = q[i];
         const int b = q[(i + 1) % 4];
         if (a == b) fail("an element has a collapsed side at " + at(mesh_.nodes[a]));
-        ++uses[{std::min(a, b), std::max(a, b)}];
+        const int count = quads_on_side(a, b);
+        const Vec2 p = 0.5 * (mesh_.nodes[a] + mesh_.nodes[b]);
+        if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
+        const std::pair<int, int> side{std::min(a, b), std::max(a, b)};
+        const auto interval = on_boundary_interval[a] && on_boundary_interval[b]
+                                  ? std::lower_bound(boundary_intervals.begin(), boundary_intervals.end(), side)
+                                  : boundary_intervals.end();
+        const bool on_boundary = interval != boundary_intervals.end() && *interval == side;
+        if ((count == 1) != on_boundary)
+          fail("an element side at " + at(p) +
+               (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
+        if (on_boundary) interval_used[interval - boundary_intervals.begin()] = 1;
       }
     }
-    // The outer sides are exactly the boundary's intervals, each once: with
-    // every element turning counter-clockwise, the elements then cover the
-    // face once (the mapping's degree is the boundary's winding number).
-    std::map<std::pair<int, int>, bool> boundary_intervals;
-    for (const Segment& s : segments_) {
-      if (s.split >= 0) continue;
-      for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
-        boundary_intervals[{std::min(s.nodes[k], s.nodes[k + 1]), std::max(s.nodes[k], s.nodes[k + 1])}] = false;
-      }
+    for (std::size_t k = 0; k < boundary_intervals.size(); ++k) {
+      if (!interval_used[k])
+        fail("no element lies along the boundary at " + at(mesh_.nodes[boundary_intervals[k].first]));
     }
     double outer_chord_error = 0.0;
-    for (const auto& [edge, count] : uses) {
-      const Vec2 p = 0.5 * (mesh_.nodes[edge.first] + mesh_.nodes[edge.second]);
-      if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
-      const auto interval = boundary_intervals.find(edge);
-      if ((count == 1) != (interval != boundary_intervals.end()))
-        fail("an element side at " + at(p) +
-             (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
-      if (interval != boundary_intervals.end()) interval->second = true;
-    }
-    for (const auto& [edge, used] : boundary_intervals) {
-      if (!used) fail("no element lies along the boundary at " + at(mesh_.nodes[edge.first]));
-    }
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {

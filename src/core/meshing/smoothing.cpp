@@ -189,6 +189,21 @@ class Smoother {
     return local;
   }
 
+  // Whether putting node n at p is better() than `current`, without
+  // finishing the sum once one quad falls below current.min (then it is not).
+  template <bool kScaled>
+  bool improves(int n, Vec2 p, const LocalQuality& current, LocalQuality& candidate) const {
+    candidate = LocalQuality{std::numeric_limits<double>::infinity(), 0.0};
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const double value = quad_value<kScaled>(corners_[k] / 4, n, p);
+      if (value < current.min) return false;
+      candidate.min = std::min(candidate.min, value);
+      candidate.mean += value;
+    }
+    candidate.mean /= offsets_[n + 1] - offsets_[n];
+    return better(candidate, current);
+  }
+
   LocalQuality cached_quality(int n) const {
     LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
@@ -300,7 +315,8 @@ class Smoother {
         if (dot(step, step) < still2) continue;
         for (double fraction : kStepFractions) {
           const Vec2 p = x + fraction * step;
-          if (!better(local_quality<true>(n, p), current)) continue;
+          LocalQuality candidate;
+          if (!improves<true>(n, p, current, candidate)) continue;
           commit(n, p, 0.0);
           return fraction * fraction * dot(step, step) >= still2;
         }
@@ -321,7 +337,8 @@ class Smoother {
         const Vec2 p = edge_point(edge, tc).p;
         const Vec2 step = p - x;
         if (dot(step, step) < still2) break;
-        if (!better(local_quality<true>(n, p), current)) continue;
+        LocalQuality candidate;
+        if (!improves<true>(n, p, current, candidate)) continue;
         commit(n, p, tc);
         return true;
       }
@@ -364,8 +381,8 @@ class Smoother {
     double best_t = t0;
     LocalQuality best = local_quality<kScaled>(n, x0);
     const auto consider = [&](Vec2 p, double t) {
-      const LocalQuality q = local_quality<kScaled>(n, p);
-      if (!better(q, best)) return false;
+      LocalQuality q;
+      if (!improves<kScaled>(n, p, best, q)) return false;
       best = q, best_p = p, best_t = t;
       return true;
     };
