@@ -196,7 +196,8 @@ TEST(BlockTemplates, GradedRectangleGradesTheInterior) {
 }
 
 TEST(BlockTemplates, CircleDiscs) {
-  for (int count : {16, 24}) {
+  // 600 intervals: the layout is chosen on a coarse copy of the loop.
+  for (int count : {16, 24, 600}) {
     Outlined o = ellipse(1.0, 1.0, count);
     const int a = count / 4, b = count / 4;
     fill_block(shape_of(BlockTemplate::Disc), {a, b}, o.outline, 1, o.mesh);
@@ -208,6 +209,21 @@ TEST(BlockTemplates, CircleDiscs) {
     EXPECT_EQ(irregular(c), 4);
     EXPECT_GT(c.min_scaled_jacobian, 0.5) << count;
   }
+}
+
+// The same ellipse at a coarse and a fine count: the fine one's layout is
+// chosen on a coarse copy and must be about as good as the coarse search.
+TEST(BlockTemplates, LongDiscLoopKeepsTheCoarseLayoutQuality) {
+  double worst[2];
+  for (int k = 0; k < 2; ++k) {
+    const int count = k == 0 ? 96 : 960;
+    Outlined o = ellipse(2.0, 1.0, count);
+    fill_block(shape_of(BlockTemplate::Disc), {count / 3, count / 6}, o.outline, 1, o.mesh);
+    const Checked c = check_block(o, 1, "ellipse" + std::to_string(count));
+    EXPECT_EQ(irregular(c), 4) << count;
+    worst[k] = c.min_scaled_jacobian;
+  }
+  EXPECT_GT(worst[1], worst[0] - 0.1);
 }
 
 TEST(BlockTemplates, EllipseDisc) {

@@ -408,6 +408,9 @@ double fill_disc_layout(Filler& f, const Chain& loop, int start, double depth_fr
   return *std::min_element(sizes, sizes + 3) / *std::max_element(sizes, sizes + 3);
 }
 
+// Loops longer than this choose their disc layout on a coarse copy.
+constexpr int kDiscTrialNodes = 192;
+
 void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
   const int n = static_cast<int>(loop.size());
   if (p.size() != 2) fail(f.block, "a disc needs 2 parameters (a, b), got " + std::to_string(p.size()));
@@ -416,28 +419,36 @@ void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
     fail(f.block, "a disc of " + std::to_string(n) + " intervals cannot hold an inner " + std::to_string(a) + " x " +
                       std::to_string(b) + " rectangle (needs 2a + 2b = " + std::to_string(n) + ")");
   // Try ring corner positions and inner sizes on a scratch copy of the loop;
-  // keep the best worst element, then the most uniform sizes.
+  // keep the best worst element, then the most uniform sizes. A long loop is
+  // copied coarsely (every trial fills the whole disc, and the best layout
+  // hardly depends on the resolution), the chosen start mapped back.
+  const double stride = n > kDiscTrialNodes ? double(n) / kDiscTrialNodes : 1.0;
+  const int trial_a = stride > 1.0 ? std::max(1, static_cast<int>(std::lround(a / stride))) : a;
+  const int trial_b = stride > 1.0 ? std::max(1, static_cast<int>(std::lround(b / stride))) : b;
+  const int trial_n = 2 * trial_a + 2 * trial_b;
+  const auto fine_index = [&](int k) { return static_cast<int>(std::lround(double(k) * n / trial_n)) % n; };
   QuadMesh scratch;
-  Chain scratch_loop(n);
-  for (int k = 0; k < n; ++k) scratch.nodes.push_back(f.at(loop[k])), scratch_loop[k] = k;
-  scratch.places.resize(n);
-  const int step = std::max(1, n / 96);
+  Chain scratch_loop(trial_n);
+  for (int k = 0; k < trial_n; ++k) scratch.nodes.push_back(f.at(loop[fine_index(k)])), scratch_loop[k] = k;
+  scratch.places.resize(trial_n);
+  const int step = std::max(1, trial_n / 96);
   double best_score = -std::numeric_limits<double>::infinity(), best_depth = 0.5;
   int best_start = 0;
-  for (int start = 0; start < n; start += step) {
+  for (int start = 0; start < trial_n; start += step) {
     for (double depth = 0.25; depth < 0.7; depth += 0.1) {
-      scratch.nodes.resize(n);
-      scratch.places.resize(n);
+      scratch.nodes.resize(trial_n);
+      scratch.places.resize(trial_n);
       scratch.quads.clear();
       scratch.block_of_quad.clear();
       Filler trial{scratch, f.block};
-      const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, a, b);
+      const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, trial_a, trial_b);
       double worst = 1.0;
       for (const auto& q : scratch.quads) worst = std::min(worst, scaled_jacobian(scratch, q));
       const double score = worst + 0.5 * uniformity;
       if (score > best_score) best_score = score, best_start = start, best_depth = depth;
     }
   }
+  best_start = fine_index(best_start);
   fill_disc_layout(f, loop, best_start, best_depth, a, b);
 }
 
