@@ -475,14 +475,37 @@ class BlockMesher {
     return s.params[k];
   }
 
+  // Each node's quads in compressed lists, so that the quads on a side are
+  // found next to one of its nodes (linear in the mesh: no map of all sides).
+  struct QuadsAtNodes {
+    std::vector<int> first;  // node n's quads: quads[first[n] .. first[n + 1])
+    std::vector<int> quads;
+  };
+
+  QuadsAtNodes quads_at_nodes() const {
+    const std::size_t nodes = mesh_.nodes.size();
+    QuadsAtNodes at;
+    at.first.assign(nodes + 1, 0);
+    for (const auto& q : mesh_.quads)
+      for (int n : q) ++at.first[n + 1];
+    for (std::size_t n = 0; n < nodes; ++n) at.first[n + 1] += at.first[n];
+    at.quads.resize(at.first[nodes]);
+    std::vector<int> fill(at.first.begin(), at.first.end() - 1);
+    for (std::size_t e = 0; e < mesh_.quads.size(); ++e)
+      for (int n : mesh_.quads[e]) at.quads[fill[n]++] = static_cast<int>(e);
+    return at;
+  }
+
   // Order 2: a node in the middle of every element side, on the exact curve
   // for sides along the boundary.
   void add_midside_nodes() {
-    std::map<std::pair<int, int>, int> middle;
-    const auto add = [&](int a, int b, Vec2 p, const NodePlace& place) {
-      middle[{std::min(a, b), std::max(a, b)}] = static_cast<int>(mesh_.nodes.size());
+    const QuadsAtNodes at = quads_at_nodes();
+    std::map<std::pair<int, int>, int> on_boundary;  // only the boundary's intervals: few
+    std::vector<char> boundary_node(mesh_.nodes.size(), 0);
+    const auto add = [&](Vec2 p, const NodePlace& place) {
       mesh_.nodes.push_back(p);
       mesh_.places.push_back(place);
+      return static_cast<int>(mesh_.nodes.size()) - 1;
     };
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
@@ -493,7 +516,9 @@ class BlockMesher {
         place.loop = s.loop;
         place.edge = s.edge;
         place.t = t;
-        add(s.nodes[k], s.nodes[k + 1], edge_point(edge_of(s), t).p, place);
+        const int a = s.nodes[k], b = s.nodes[k + 1];
+        on_boundary[{std::min(a, b), std::max(a, b)}] = add(edge_point(edge_of(s), t).p, place);
+        boundary_node[a] = boundary_node[b] = 1;
       }
     }
     mesh_.midside.resize(mesh_.quads.size());
@@ -501,32 +526,34 @@ class BlockMesher {
       for (int i = 0; i < 4; ++i) {
         const int a = mesh_.quads[e][i];
         const int b = mesh_.quads[e][(i + 1) % 4];
-        auto found = middle.find({std::min(a, b), std::max(a, b)});
-        if (found == middle.end()) {
-          add(a, b, 0.5 * (mesh_.nodes[a] + mesh_.nodes[b]), NodePlace{});
-          found = middle.find({std::min(a, b), std::max(a, b)});
+        int middle = -1;
+        if (boundary_node[a] && boundary_node[b]) {
+          const auto found = on_boundary.find({std::min(a, b), std::max(a, b)});
+          if (found != on_boundary.end()) middle = found->second;
         }
-        mesh_.midside[e][i] = found->second;
+        // An inner side's node comes from the first quad along it.
+        for (int k = at.first[a]; k < at.first[a + 1] && middle < 0; ++k) {
+          const int other = at.quads[k];
+          if (other >= static_cast<int>(e)) continue;
+          for (int j = 0; j < 4; ++j) {
+            const int c = mesh_.quads[other][j], d = mesh_.quads[other][(j + 1) % 4];
+            if ((c == a && d == b) || (c == b && d == a)) middle = mesh_.midside[other][j];
+          }
+        }
+        if (middle < 0) middle = add(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]), NodePlace{});
+        mesh_.midside[e][i] = middle;
       }
     }
   }
 
   // The mesh's own checks: conformity, orientation, area.
   void check_mesh() const {
-    // Each node's quads, so that the quads on a side are found next to it
-    // (linear in the mesh: no map of all sides).
     const std::size_t nodes = mesh_.nodes.size();
-    std::vector<int> first(nodes + 1, 0);
-    for (const auto& q : mesh_.quads)
-      for (int n : q) ++first[n + 1];
-    for (std::size_t n = 0; n < nodes; ++n) first[n + 1] += first[n];
-    std::vector<int> quads_at(first[nodes]), fill(first.begin(), first.end() - 1);
-    for (std::size_t e = 0; e < mesh_.quads.size(); ++e)
-      for (int n : mesh_.quads[e]) quads_at[fill[n]++] = static_cast<int>(e);
+    const QuadsAtNodes quads_at = quads_at_nodes();
     const auto quads_on_side = [&](int a, int b) {
       int count = 0;
-      for (int k = first[a]; k < first[a + 1]; ++k) {
-        const auto& q = mesh_.quads[quads_at[k]];
+      for (int k = quads_at.first[a]; k < quads_at.first[a + 1]; ++k) {
+        const auto& q = mesh_.quads[quads_at.quads[k]];
         for (int i = 0; i < 4; ++i)
           if (q[i] == a && (q[(i + 1) % 4] == b || q[(i + 3) % 4] == b)) ++count;
       }
