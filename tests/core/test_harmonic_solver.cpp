@@ -76,5 +76,33 @@ TEST(HarmonicSolver, SizesThatDoNotFitAreRejected) {
   EXPECT_THROW(solve_harmonic(bad, g.rhs, x, 1e-9, 10), std::invalid_argument);
 }
 
+// Nodes whose neighbours are all fixed do not coarsen: that level is solved
+// by sweeps (exact here), not factored, however many nodes it has.
+TEST(HarmonicSolver, NodesWithOnlyFixedNeighboursAreSolvedBySweeps) {
+  HarmonicSystem system;
+  std::vector<Vec2> rhs;
+  for (int i = 0; i < 1000; ++i) {
+    system.degree.push_back(4.0);
+    system.offset.push_back(0);
+    rhs.push_back(4.0 * Vec2{double(i), -double(i)});
+  }
+  std::vector<Vec2> x(rhs.size(), Vec2{0.0, 0.0});
+  const HarmonicSolve solve = solve_harmonic(system, rhs, x, 1e-12, 10);
+  EXPECT_TRUE(solve.converged);
+  for (int i = 0; i < 1000; ++i) EXPECT_EQ(distance(x[i], Vec2{double(i), -double(i)}), 0.0) << i;
+}
+
+TEST(HarmonicSolver, PartWithoutAFixedNeighbourIsRejected) {
+  // Two free nodes joined only to each other: the map is not determined.
+  HarmonicSystem system;
+  system.offset = {0, 1, 2};
+  system.neighbour = {1, 0};
+  system.degree = {1.0, 1.0};
+  std::vector<Vec2> rhs(2), x(2);
+  EXPECT_THROW(solve_harmonic(system, rhs, x, 1e-9, 10), std::invalid_argument);
+  system.degree = {0.5, 1.0};  // fewer than its free neighbours
+  EXPECT_THROW(solve_harmonic(system, rhs, x, 1e-9, 10), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace mm

@@ -320,7 +320,11 @@ void place_harmonically(Filler& f, int first_new, std::size_t first_quad) {
     system.offset.push_back(static_cast<int>(system.neighbour.size()));
   }
   // The cap only guards against a stall: the result is judged anyway.
-  solve_harmonic(system, rhs, x, kHarmonicTolerance * mean_side, 200);
+  try {
+    solve_harmonic(system, rhs, x, kHarmonicTolerance * mean_side, 200);
+  } catch (const std::invalid_argument& e) {
+    fail(f.block, std::string("the harmonic layout cannot be solved: ") + e.what());
+  }
   std::copy(x.begin(), x.end(), f.mesh.nodes.begin() + first_new);
 }
 

@@ -142,7 +142,13 @@ void gauss_seidel(const Level& level, const std::vector<Vec2>& b, std::vector<Ve
 void v_cycle(const std::vector<Level>& levels, std::size_t l, const std::vector<Vec2>& b, std::vector<Vec2>& x) {
   const Level& level = levels[l];
   if (l + 1 == levels.size()) {
-    solve_dense(level, b, x);
+    if (!level.cholesky.empty()) {
+      solve_dense(level, b, x);
+    } else {  // too large to factor (coarsening stalled): a symmetric sweep
+      x.assign(level.n, Vec2{0.0, 0.0});
+      gauss_seidel(level, b, x, true);
+      gauss_seidel(level, b, x, false);
+    }
     return;
   }
   x.assign(level.n, Vec2{0.0, 0.0});
@@ -182,6 +188,11 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
   levels[0].diagonal = system.degree;
   for (int c : system.neighbour)
     if (c < 0 || c >= n) throw std::invalid_argument("harmonic solve: a neighbour is not a free node");
+  for (int i = 0; i < n; ++i)
+    if (system.offset[i] > system.offset[i + 1] || !(system.degree[i] >= system.offset[i + 1] - system.offset[i]) ||
+        !(system.degree[i] > 0.0))
+      throw std::invalid_argument("harmonic solve: node " + std::to_string(i) +
+                                  " has a degree below its free neighbours or no neighbour");
   while (levels.back().n > kCoarsest) {
     std::vector<int> of;
     const int count = aggregate(levels.back(), of);
@@ -190,9 +201,9 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
     levels.back().aggregate = std::move(of);
     levels.push_back(std::move(next));
   }
-  if (levels.back().n > 4 * kCoarsest)
-    throw std::invalid_argument("harmonic solve: the system does not coarsen (nodes without neighbours)");
-  factor_dense(levels.back());
+  // Coarsening stalls only where nodes have no free neighbour (each its own
+  // aggregate); such a level is solved by sweeps, not factored.
+  if (levels.back().n <= 4 * kCoarsest) factor_dense(levels.back());
   const Level& top = levels[0];
 
   // Preconditioned conjugate gradients, each coordinate its own scalars.
