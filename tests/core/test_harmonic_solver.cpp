@@ -29,7 +29,7 @@ Grid grid(int n) {
   for (int j = 1; j < n; ++j)
     for (int i = 1; i < n; ++i) {
       const int k = id(i, j);
-      for (const auto [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+      for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
         const int a = i + di, b = j + dj;
         if (a < 1 || a >= n || b < 1 || b >= n)
           g.rhs[k] = g.rhs[k] + affine(a, b, n);
