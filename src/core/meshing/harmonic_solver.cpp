@@ -19,6 +19,7 @@ constexpr double kCoarseScale = 1.8;
 // Symmetric sparse matrix, rows in compressed form; the diagonal apart.
 struct Level {
   int n = 0;
+  bool unit = false;     // every off-diagonal entry is -1 (the finest level): no values to read
   std::vector<int> row;  // entries of row i: col/value[row[i] .. row[i + 1])
   std::vector<int> col;
   std::vector<double> value;
@@ -128,12 +129,20 @@ void solve_dense(const Level& level, const std::vector<Vec2>& b, std::vector<Vec
   }
 }
 
+// s minus the off-diagonal part of row i times x.
+inline Vec2 row_rest(const Level& level, Vec2 s, const std::vector<Vec2>& x, int i) {
+  if (level.unit) {
+    for (int k = level.row[i]; k < level.row[i + 1]; ++k) s = s + x[level.col[k]];
+  } else {
+    for (int k = level.row[i]; k < level.row[i + 1]; ++k) s = s - level.value[k] * x[level.col[k]];
+  }
+  return s;
+}
+
 void gauss_seidel(const Level& level, const std::vector<Vec2>& b, std::vector<Vec2>& x, bool forward) {
   for (int step = 0; step < level.n; ++step) {
     const int i = forward ? step : level.n - 1 - step;
-    Vec2 s = b[i];
-    for (int k = level.row[i]; k < level.row[i + 1]; ++k) s = s - level.value[k] * x[level.col[k]];
-    x[i] = s / level.diagonal[i];
+    x[i] = row_rest(level, b[i], x, i) / level.diagonal[i];
   }
 }
 
@@ -156,8 +165,7 @@ void v_cycle(const std::vector<Level>& levels, std::size_t l, const std::vector<
   const Level& next = levels[l + 1];
   level.coarse_rhs.assign(next.n, Vec2{0.0, 0.0});
   for (int i = 0; i < level.n; ++i) {
-    Vec2 r = b[i] - level.diagonal[i] * x[i];
-    for (int k = level.row[i]; k < level.row[i + 1]; ++k) r = r - level.value[k] * x[level.col[k]];
+    const Vec2 r = row_rest(level, b[i] - level.diagonal[i] * x[i], x, i);
     level.coarse_rhs[level.aggregate[i]] = level.coarse_rhs[level.aggregate[i]] + r;
   }
   v_cycle(levels, l + 1, level.coarse_rhs, level.coarse_x);
@@ -182,6 +190,7 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
   }
   std::vector<Level> levels(1);
   levels[0].n = n;
+  levels[0].unit = true;
   levels[0].row = system.offset;
   levels[0].col = system.neighbour;
   levels[0].value.assign(system.neighbour.size(), -1.0);
@@ -233,15 +242,23 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
   for (int i = 0; i < n; ++i) rz[0] += residual[i].x * z[i].x, rz[1] += residual[i].y * z[i].y;
   while (result.iterations < max_iterations) {
     ++result.iterations;
-    apply(direction, product);
+    // One pass each for the product with its scalars and for the updates
+    // with the stopping measure.
     double pap[2] = {0.0, 0.0};
-    for (int i = 0; i < n; ++i) pap[0] += direction[i].x * product[i].x, pap[1] += direction[i].y * product[i].y;
+    for (int i = 0; i < n; ++i) {
+      Vec2 s = top.diagonal[i] * direction[i];
+      for (int k = top.row[i]; k < top.row[i + 1]; ++k) s = s - direction[top.col[k]];
+      product[i] = s;
+      pap[0] += direction[i].x * s.x, pap[1] += direction[i].y * s.y;
+    }
     const double alpha[2] = {pap[0] > 0.0 ? rz[0] / pap[0] : 0.0, pap[1] > 0.0 ? rz[1] / pap[1] : 0.0};
+    double largest = 0.0;
     for (int i = 0; i < n; ++i) {
       x[i] = x[i] + Vec2{alpha[0] * direction[i].x, alpha[1] * direction[i].y};
       residual[i] = residual[i] - Vec2{alpha[0] * product[i].x, alpha[1] * product[i].y};
+      largest = std::max(largest, std::max(std::abs(residual[i].x), std::abs(residual[i].y)) / top.diagonal[i]);
     }
-    if (largest_step() <= tolerance) {
+    if (largest <= tolerance) {
       result.converged = true;
       break;
     }
