@@ -196,7 +196,8 @@ TEST(BlockTemplates, GradedRectangleGradesTheInterior) {
 }
 
 TEST(BlockTemplates, CircleDiscs) {
-  for (int count : {16, 24}) {
+  // 600 intervals: the layout is chosen on a coarse copy of the loop.
+  for (int count : {16, 24, 600}) {
     Outlined o = ellipse(1.0, 1.0, count);
     const int a = count / 4, b = count / 4;
     fill_block(shape_of(BlockTemplate::Disc), {a, b}, o.outline, 1, o.mesh);
@@ -208,6 +209,21 @@ TEST(BlockTemplates, CircleDiscs) {
     EXPECT_EQ(irregular(c), 4);
     EXPECT_GT(c.min_scaled_jacobian, 0.5) << count;
   }
+}
+
+// The same ellipse at a coarse and a fine count: the fine one's layout is
+// chosen on a coarse copy and must be about as good as the coarse search.
+TEST(BlockTemplates, LongDiscLoopKeepsTheCoarseLayoutQuality) {
+  double worst[2];
+  for (int k = 0; k < 2; ++k) {
+    const int count = k == 0 ? 96 : 960;
+    Outlined o = ellipse(2.0, 1.0, count);
+    fill_block(shape_of(BlockTemplate::Disc), {count / 3, count / 6}, o.outline, 1, o.mesh);
+    const Checked c = check_block(o, 1, "ellipse" + std::to_string(count));
+    EXPECT_EQ(irregular(c), 4) << count;
+    worst[k] = c.min_scaled_jacobian;
+  }
+  EXPECT_GT(worst[1], worst[0] - 0.1);
 }
 
 TEST(BlockTemplates, EllipseDisc) {
@@ -321,6 +337,26 @@ TEST(BlockTemplates, SubmappedLUT) {
   const std::vector<int> t_types{1, 3, 1, 1, 3, 1, 1, 1};
   expect_submap(polygon_outline(t_shape, {2, 2, 2, 2, 2, 2, 6, 2}), t_types, 6 * 2 + 2 * 2, "T2");
   expect_submap(polygon_outline(t_shape, {3, 4, 2, 4, 2, 2, 7, 2}), t_types, 7 * 2 + 2 * 4, "T3");
+}
+
+// The pentagon beside a plate's hole (a quarter of plate_with_hole): its
+// midpoint subdivision by transfinite interpolation folds along the arc once
+// the counts are fine, so the block must come out of the harmonic layout.
+TEST(BlockTemplates, FoldingMidpointFillFallsBackToTheHarmonicLayout) {
+  const auto line = [](Vec2 a, Vec2 b) { return [a, b](double t) { return a + t * (b - a); }; };
+  const auto arc = [](double t) {
+    const double angle = -0.5 * kPi - 0.5 * kPi * t;
+    return Vec2{std::cos(angle), std::sin(angle)};
+  };
+  const std::vector<int> c{100, 57, 1, 100, 100};
+  std::vector<int> counts(5);
+  for (int i = 0; i < 5; ++i) counts[i] = c[(i + 4) % 5] + c[(i + 1) % 5];
+  Outlined o = curve_outline(
+      {line({-2, -2}, {0, -2}), line({0, -2}, {0, -1}), arc, line({-1, 0}, {-2, 0}), line({-2, 0}, {-2, -2})}, counts);
+  fill_block(shape_of(BlockTemplate::Midpoint, {1, 1, 1, 1, 1}), c, o.outline, 3, o.mesh);
+  const Checked checked = check_block(o, 3, "plate_pentagon");
+  EXPECT_GT(checked.min_scaled_jacobian, 0.3);
+  EXPECT_EQ(irregular(checked), 1);
 }
 
 void expect_error(Outlined o, const BlockShape& shape, const std::vector<int>& params, int block,

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "meshing/harmonic_solver.hpp"
+
 namespace mm {
 namespace {
 
@@ -246,63 +248,20 @@ double scaled_jacobian(const QuadMesh& mesh, const std::array<int, 4>& q) {
   for (int k = 0; k < 4; ++k) {
     const Vec2 p = mesh.nodes[q[k]];
     const Vec2 e1 = mesh.nodes[q[(k + 1) % 4]] - p, e2 = mesh.nodes[q[(k + 3) % 4]] - p;
-    const double len = norm(e1) * norm(e2);
+    const double len = std::sqrt(dot(e1, e1) * dot(e2, e2));
     worst = std::min(worst, len > 0.0 ? cross(e1, e2) / len : -1.0);
   }
   return worst;
 }
 
-// The discrete harmonic map of the block's new nodes (every one the mean of
-// its neighbours, the outline fixed), solved by conjugate gradients. On a
-// convex outline it never folds (Tutte), whatever the template's shape.
-void place_harmonically(Filler& f, int first_new, std::size_t first_quad) {
-  const int m = static_cast<int>(f.mesh.nodes.size()) - first_new;
-  std::vector<std::vector<int>> neighbours(m);
-  for (std::size_t k = first_quad; k < f.mesh.quads.size(); ++k) {
-    const auto& q = f.mesh.quads[k];
-    for (int i = 0; i < 4; ++i) {
-      const int a = q[i], b = q[(i + 1) % 4];
-      for (const auto& [from, to] : {std::make_pair(a, b), std::make_pair(b, a)})
-        if (from >= first_new) {
-          auto& list = neighbours[from - first_new];
-          if (std::find(list.begin(), list.end(), to) == list.end()) list.push_back(to);
-        }
-    }
-  }
-  // (D - A_free) x = sum of fixed neighbours, D the degrees.
-  std::vector<Vec2> rhs(m, Vec2{0.0, 0.0});
-  for (int k = 0; k < m; ++k)
-    for (int other : neighbours[k])
-      if (other < first_new) rhs[k] = rhs[k] + f.at(other);
-  auto apply = [&](const std::vector<Vec2>& v, std::vector<Vec2>& out) {
-    for (int k = 0; k < m; ++k) {
-      Vec2 sum = double(neighbours[k].size()) * v[k];
-      for (int other : neighbours[k])
-        if (other >= first_new) sum = sum - v[other - first_new];
-      out[k] = sum;
-    }
-  };
-  std::vector<Vec2> solution(m, Vec2{0.0, 0.0}), residual = rhs, direction = rhs, product(m);
-  double scale = 0.0;
-  for (const Vec2& r : rhs) scale = std::max(scale, norm(r));
-  for (int iteration = 0; iteration < 10 * m + 10; ++iteration) {
-    double rr[2] = {0, 0}, pap[2] = {0, 0};
-    for (int k = 0; k < m; ++k) rr[0] += residual[k].x * residual[k].x, rr[1] += residual[k].y * residual[k].y;
-    if (std::sqrt(std::max(rr[0], rr[1])) <= 1e-13 * scale * std::sqrt(double(m))) break;
-    apply(direction, product);
-    for (int k = 0; k < m; ++k) pap[0] += direction[k].x * product[k].x, pap[1] += direction[k].y * product[k].y;
-    const double alpha[2] = {pap[0] > 0 ? rr[0] / pap[0] : 0.0, pap[1] > 0 ? rr[1] / pap[1] : 0.0};
-    double rr_next[2] = {0, 0};
-    for (int k = 0; k < m; ++k) {
-      solution[k] = solution[k] + Vec2{alpha[0] * direction[k].x, alpha[1] * direction[k].y};
-      residual[k] = residual[k] - Vec2{alpha[0] * product[k].x, alpha[1] * product[k].y};
-      rr_next[0] += residual[k].x * residual[k].x, rr_next[1] += residual[k].y * residual[k].y;
-    }
-    const double beta[2] = {rr[0] > 0 ? rr_next[0] / rr[0] : 0.0, rr[1] > 0 ? rr_next[1] / rr[1] : 0.0};
-    for (int k = 0; k < m; ++k) direction[k] = residual[k] + Vec2{beta[0] * direction[k].x, beta[1] * direction[k].y};
-  }
-  std::copy(solution.begin(), solution.end(), f.mesh.nodes.begin() + first_new);
-}
+// The template's placement stands when its worst element is at least this
+// good: the bar smoothing works up to (smoothing.cpp kGoodEnough). Below it
+// the harmonic layout is tried as well and the better one kept.
+constexpr double kPlacementGoodEnough = 0.9;
+// The harmonic solve stops once no node is further than this fraction of
+// the block's mean side from the mean of its neighbours: far below what
+// changes an element's quality.
+constexpr double kHarmonicTolerance = 1e-5;
 
 double worst_scaled_jacobian(const QuadMesh& mesh, std::size_t first_quad) {
   double worst = 1.0;
@@ -311,14 +270,74 @@ double worst_scaled_jacobian(const QuadMesh& mesh, std::size_t first_quad) {
   return worst;
 }
 
-// Keeps the transfinite placement unless the harmonic one has a better worst
-// element (it rescues templates whose straight inner lines fold on curved or
-// sharp outlines; it loses the sides' grading, so it must earn its place).
+// The discrete harmonic map of the block's new nodes (every one the mean of
+// its neighbours, the outline fixed), started from the nodes' current
+// places. On a convex outline it never folds (Tutte), whatever the
+// template's shape.
+void place_harmonically(Filler& f, int first_new, std::size_t first_quad) {
+  const int m = static_cast<int>(f.mesh.nodes.size()) - first_new;
+  if (m <= 0) return;
+  // Each new node's neighbours along the block's sides, an inner side seen
+  // from both its quads; lists gathered by counting, then made unique.
+  const std::size_t quads = f.mesh.quads.size() - first_quad;
+  std::vector<int> start(m + 1, 0);
+  double side_sum = 0.0;
+  for (std::size_t k = first_quad; k < f.mesh.quads.size(); ++k) {
+    const auto& q = f.mesh.quads[k];
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 side = f.at(q[(i + 1) % 4]) - f.at(q[i]);
+      side_sum += std::sqrt(dot(side, side));
+      if (q[i] >= first_new) start[q[i] - first_new + 1] += 2;
+    }
+  }
+  for (int k = 0; k < m; ++k) start[k + 1] += start[k];
+  std::vector<int> seen(start[m]), fill(start.begin(), start.end() - 1);
+  for (std::size_t k = first_quad; k < f.mesh.quads.size(); ++k) {
+    const auto& q = f.mesh.quads[k];
+    for (int i = 0; i < 4; ++i)
+      if (q[i] >= first_new) {
+        seen[fill[q[i] - first_new]++] = q[(i + 1) % 4];
+        seen[fill[q[i] - first_new]++] = q[(i + 3) % 4];
+      }
+  }
+  const double mean_side = side_sum / (4.0 * double(quads));
+  // (D - A_free) x = sum of fixed neighbours, D the degrees.
+  HarmonicSystem system;
+  system.offset.assign(1, 0);
+  system.degree.assign(m, 0.0);
+  system.neighbour.reserve(start[m] / 2 + m);
+  std::vector<Vec2> rhs(m, Vec2{0.0, 0.0}), x(f.mesh.nodes.begin() + first_new, f.mesh.nodes.end());
+  for (int k = 0; k < m; ++k) {
+    std::sort(seen.begin() + start[k], seen.begin() + start[k + 1]);
+    const auto end = std::unique(seen.begin() + start[k], seen.begin() + start[k + 1]);
+    for (auto it = seen.begin() + start[k]; it != end; ++it) {
+      system.degree[k] += 1.0;
+      if (*it >= first_new)
+        system.neighbour.push_back(*it - first_new);
+      else
+        rhs[k] = rhs[k] + f.at(*it);
+    }
+    system.offset.push_back(static_cast<int>(system.neighbour.size()));
+  }
+  // The cap only guards against a stall: the result is judged anyway.
+  try {
+    solve_harmonic(system, rhs, x, kHarmonicTolerance * mean_side, 200);
+  } catch (const std::invalid_argument& e) {
+    fail(f.block, std::string("the harmonic layout cannot be solved: ") + e.what());
+  }
+  std::copy(x.begin(), x.end(), f.mesh.nodes.begin() + first_new);
+}
+
+// Keeps the template's placement when it is good enough; otherwise also
+// tries the harmonic one (it rescues templates whose straight inner lines
+// fold on curved or sharp outlines; it loses the sides' grading, so it must
+// earn its place) and keeps the better worst element.
 void keep_better_of_harmonic(Filler& f, int first_new, std::size_t first_quad) {
-  const double transfinite = worst_scaled_jacobian(f.mesh, first_quad);
+  const double placed = worst_scaled_jacobian(f.mesh, first_quad);
+  if (placed >= kPlacementGoodEnough) return;
   const std::vector<Vec2> kept(f.mesh.nodes.begin() + first_new, f.mesh.nodes.end());
   place_harmonically(f, first_new, first_quad);
-  if (worst_scaled_jacobian(f.mesh, first_quad) <= transfinite)
+  if (worst_scaled_jacobian(f.mesh, first_quad) <= placed)
     std::copy(kept.begin(), kept.end(), f.mesh.nodes.begin() + first_new);
 }
 
@@ -393,6 +412,9 @@ double fill_disc_layout(Filler& f, const Chain& loop, int start, double depth_fr
   return *std::min_element(sizes, sizes + 3) / *std::max_element(sizes, sizes + 3);
 }
 
+// Loops longer than this choose their disc layout on a coarse copy.
+constexpr int kDiscTrialNodes = 192;
+
 void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
   const int n = static_cast<int>(loop.size());
   if (p.size() != 2) fail(f.block, "a disc needs 2 parameters (a, b), got " + std::to_string(p.size()));
@@ -401,28 +423,36 @@ void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
     fail(f.block, "a disc of " + std::to_string(n) + " intervals cannot hold an inner " + std::to_string(a) + " x " +
                       std::to_string(b) + " rectangle (needs 2a + 2b = " + std::to_string(n) + ")");
   // Try ring corner positions and inner sizes on a scratch copy of the loop;
-  // keep the best worst element, then the most uniform sizes.
+  // keep the best worst element, then the most uniform sizes. A long loop is
+  // copied coarsely (every trial fills the whole disc, and the best layout
+  // hardly depends on the resolution), the chosen start mapped back.
+  const double stride = n > kDiscTrialNodes ? double(n) / kDiscTrialNodes : 1.0;
+  const int trial_a = stride > 1.0 ? std::max(1, static_cast<int>(std::lround(a / stride))) : a;
+  const int trial_b = stride > 1.0 ? std::max(1, static_cast<int>(std::lround(b / stride))) : b;
+  const int trial_n = 2 * trial_a + 2 * trial_b;
+  const auto fine_index = [&](int k) { return static_cast<int>(std::lround(double(k) * n / trial_n)) % n; };
   QuadMesh scratch;
-  Chain scratch_loop(n);
-  for (int k = 0; k < n; ++k) scratch.nodes.push_back(f.at(loop[k])), scratch_loop[k] = k;
-  scratch.places.resize(n);
-  const int step = std::max(1, n / 96);
+  Chain scratch_loop(trial_n);
+  for (int k = 0; k < trial_n; ++k) scratch.nodes.push_back(f.at(loop[fine_index(k)])), scratch_loop[k] = k;
+  scratch.places.resize(trial_n);
+  const int step = std::max(1, trial_n / 96);
   double best_score = -std::numeric_limits<double>::infinity(), best_depth = 0.5;
   int best_start = 0;
-  for (int start = 0; start < n; start += step) {
+  for (int start = 0; start < trial_n; start += step) {
     for (double depth = 0.25; depth < 0.7; depth += 0.1) {
-      scratch.nodes.resize(n);
-      scratch.places.resize(n);
+      scratch.nodes.resize(trial_n);
+      scratch.places.resize(trial_n);
       scratch.quads.clear();
       scratch.block_of_quad.clear();
       Filler trial{scratch, f.block};
-      const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, a, b);
+      const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, trial_a, trial_b);
       double worst = 1.0;
       for (const auto& q : scratch.quads) worst = std::min(worst, scaled_jacobian(scratch, q));
       const double score = worst + 0.5 * uniformity;
       if (score > best_score) best_score = score, best_start = start, best_depth = depth;
     }
   }
+  best_start = fine_index(best_start);
   fill_disc_layout(f, loop, best_start, best_depth, a, b);
 }
 
@@ -524,6 +554,37 @@ void fill_submap(Filler& f, const BlockShape& shape, const Chain& loop, const st
   const int first_new = static_cast<int>(f.mesh.nodes.size());
   const std::size_t first_quad = f.mesh.quads.size();
   for (const auto& p : interior) node(p[0], p[1]) = f.add_node(Vec2{0.0, 0.0});
+  // Start from the mean of linear interpolations between the outline nodes
+  // met along each interior node's lattice row and column (the outline is a
+  // lattice polygon, so going straight from an interior node meets it before
+  // leaving): near the harmonic map, so conjugate gradients finish early.
+  const auto from_outline = [&](int i, int j) { return node(i, j) >= 0 && node(i, j) < first_new; };
+  const auto blend = [&](int a, int b, int k, int from, int to) {
+    const double s = double(k - from) / double(to - from);
+    return (1.0 - s) * f.at(a) + s * f.at(b);
+  };
+  for (int j = y_min + 1; j < y_max; ++j)
+    for (int i = x_min, last = x_min; i < x_max; ++i) {
+      if (from_outline(i, j)) last = i;
+      if (node(i, j) < first_new) continue;
+      int next = i + 1;
+      while (!from_outline(next, j)) ++next;
+      for (int k = i; k < next; ++k)
+        f.mesh.nodes[node(k, j)] = 0.5 * blend(node(last, j), node(next, j), k, last, next);
+      i = next;
+      last = next;
+    }
+  for (int i = x_min + 1; i < x_max; ++i)
+    for (int j = y_min, last = y_min; j < y_max; ++j) {
+      if (from_outline(i, j)) last = j;
+      if (node(i, j) < first_new) continue;
+      int next = j + 1;
+      while (!from_outline(i, next)) ++next;
+      for (int k = j; k < next; ++k)
+        f.mesh.nodes[node(i, k)] = f.mesh.nodes[node(i, k)] + 0.5 * blend(node(i, last), node(i, next), k, last, next);
+      j = next;
+      last = next;
+    }
   for (int j = y_min; j < y_max; ++j)
     for (int i = x_min; i < x_max; ++i)
       if (cell_inside[(j - y_min) * width + (i - x_min)])

@@ -187,7 +187,7 @@ double worst_corner(const QuadMesh& mesh, const std::array<int, 4>& q) {
     const Vec2 p = mesh.nodes[q[i]];
     const Vec2 next = mesh.nodes[q[(i + 1) % 4]] - p;
     const Vec2 prev = mesh.nodes[q[(i + 3) % 4]] - p;
-    const double lengths = norm(next) * norm(prev);
+    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
     worst = std::min(worst, lengths > 0.0 ? cross(next, prev) / lengths : -1.0);
   }
   return worst;
@@ -619,14 +619,37 @@ class BlockMesher {
     return s.params[k];
   }
 
+  // Each node's quads in compressed lists, so that the quads on a side are
+  // found next to one of its nodes (linear in the mesh: no map of all sides).
+  struct QuadsAtNodes {
+    std::vector<int> first;  // node n's quads: quads[first[n] .. first[n + 1])
+    std::vector<int> quads;
+  };
+
+  QuadsAtNodes quads_at_nodes() const {
+    const std::size_t nodes = mesh_.nodes.size();
+    QuadsAtNodes at;
+    at.first.assign(nodes + 1, 0);
+    for (const auto& q : mesh_.quads)
+      for (int n : q) ++at.first[n + 1];
+    for (std::size_t n = 0; n < nodes; ++n) at.first[n + 1] += at.first[n];
+    at.quads.resize(at.first[nodes]);
+    std::vector<int> fill(at.first.begin(), at.first.end() - 1);
+    for (std::size_t e = 0; e < mesh_.quads.size(); ++e)
+      for (int n : mesh_.quads[e]) at.quads[fill[n]++] = static_cast<int>(e);
+    return at;
+  }
+
   // Order 2: a node in the middle of every element side, on the exact curve
   // for sides along the boundary.
   void add_midside_nodes() {
-    std::map<std::pair<int, int>, int> middle;
-    const auto add = [&](int a, int b, Vec2 p, const NodePlace& place) {
-      middle[{std::min(a, b), std::max(a, b)}] = static_cast<int>(mesh_.nodes.size());
+    const QuadsAtNodes at = quads_at_nodes();
+    std::map<std::pair<int, int>, int> on_boundary;  // only the boundary's intervals: few
+    std::vector<char> boundary_node(mesh_.nodes.size(), 0);
+    const auto add = [&](Vec2 p, const NodePlace& place) {
       mesh_.nodes.push_back(p);
       mesh_.places.push_back(place);
+      return static_cast<int>(mesh_.nodes.size()) - 1;
     };
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
@@ -637,7 +660,9 @@ class BlockMesher {
         place.loop = s.loop;
         place.edge = s.edge;
         place.t = t;
-        add(s.nodes[k], s.nodes[k + 1], edge_point(edge_of(s), t).p, place);
+        const int a = s.nodes[k], b = s.nodes[k + 1];
+        on_boundary[{std::min(a, b), std::max(a, b)}] = add(edge_point(edge_of(s), t).p, place);
+        boundary_node[a] = boundary_node[b] = 1;
       }
     }
     mesh_.midside.resize(mesh_.quads.size());
@@ -645,19 +670,51 @@ class BlockMesher {
       for (int i = 0; i < 4; ++i) {
         const int a = mesh_.quads[e][i];
         const int b = mesh_.quads[e][(i + 1) % 4];
-        auto found = middle.find({std::min(a, b), std::max(a, b)});
-        if (found == middle.end()) {
-          add(a, b, 0.5 * (mesh_.nodes[a] + mesh_.nodes[b]), NodePlace{});
-          found = middle.find({std::min(a, b), std::max(a, b)});
+        int middle = -1;
+        if (boundary_node[a] && boundary_node[b]) {
+          const auto found = on_boundary.find({std::min(a, b), std::max(a, b)});
+          if (found != on_boundary.end()) middle = found->second;
         }
-        mesh_.midside[e][i] = found->second;
+        // An inner side's node comes from the first quad along it.
+        for (int k = at.first[a]; k < at.first[a + 1] && middle < 0; ++k) {
+          const int other = at.quads[k];
+          if (other >= static_cast<int>(e)) continue;
+          for (int j = 0; j < 4; ++j) {
+            const int c = mesh_.quads[other][j], d = mesh_.quads[other][(j + 1) % 4];
+            if ((c == a && d == b) || (c == b && d == a)) middle = mesh_.midside[other][j];
+          }
+        }
+        if (middle < 0) middle = add(0.5 * (mesh_.nodes[a] + mesh_.nodes[b]), NodePlace{});
+        mesh_.midside[e][i] = middle;
       }
     }
   }
 
   // The mesh's own checks: conformity, orientation, area.
   void check_mesh() const {
-    std::map<std::pair<int, int>, int> uses;
+    const std::size_t nodes = mesh_.nodes.size();
+    const QuadsAtNodes quads_at = quads_at_nodes();
+    const auto quads_on_side = [&](int a, int b) {
+      int count = 0;
+      for (int k = quads_at.first[a]; k < quads_at.first[a + 1]; ++k) {
+        const auto& q = mesh_.quads[quads_at.quads[k]];
+        for (int i = 0; i < 4; ++i)
+          if (q[i] == a && (q[(i + 1) % 4] == b || q[(i + 3) % 4] == b)) ++count;
+      }
+      return count;
+    };
+    // The outer sides are exactly the boundary's intervals, each once: with
+    // every element turning counter-clockwise, the elements then cover the
+    // face once (the mapping's degree is the boundary's winding number).
+    std::vector<std::pair<int, int>> boundary_intervals;
+    for (const Segment& s : segments_) {
+      if (s.split >= 0) continue;
+      for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k)
+        boundary_intervals.emplace_back(std::min(s.nodes[k], s.nodes[k + 1]), std::max(s.nodes[k], s.nodes[k + 1]));
+    }
+    std::sort(boundary_intervals.begin(), boundary_intervals.end());
+    std::vector<char> interval_used(boundary_intervals.size(), 0), on_boundary_interval(nodes, 0);
+    for (const auto& [a, b] : boundary_intervals) on_boundary_interval[a] = on_boundary_interval[b] = 1;
     for (const auto& q : mesh_.quads) {
       for (int i = 0; i < 4; ++i) {
         const int a = q[i];
@@ -667,32 +724,25 @@ class BlockMesher {
         if (a == b || distance(mesh_.nodes[a], mesh_.nodes[b]) <= 1e-7 * face_.size)
           fail("an element has a collapsed side (" + std::to_string(distance(mesh_.nodes[a], mesh_.nodes[b])) +
                " long) at " + at(mesh_.nodes[a]));
-        ++uses[{std::min(a, b), std::max(a, b)}];
+        const int count = quads_on_side(a, b);
+        const Vec2 p = 0.5 * (mesh_.nodes[a] + mesh_.nodes[b]);
+        if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
+        const std::pair<int, int> side{std::min(a, b), std::max(a, b)};
+        const auto interval = on_boundary_interval[a] && on_boundary_interval[b]
+                                  ? std::lower_bound(boundary_intervals.begin(), boundary_intervals.end(), side)
+                                  : boundary_intervals.end();
+        const bool on_boundary = interval != boundary_intervals.end() && *interval == side;
+        if ((count == 1) != on_boundary)
+          fail("an element side at " + at(p) +
+               (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
+        if (on_boundary) interval_used[interval - boundary_intervals.begin()] = 1;
       }
     }
-    // The outer sides are exactly the boundary's intervals, each once: with
-    // every element turning counter-clockwise, the elements then cover the
-    // face once (the mapping's degree is the boundary's winding number).
-    std::map<std::pair<int, int>, bool> boundary_intervals;
-    for (const Segment& s : segments_) {
-      if (s.split >= 0) continue;
-      for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
-        boundary_intervals[{std::min(s.nodes[k], s.nodes[k + 1]), std::max(s.nodes[k], s.nodes[k + 1])}] = false;
-      }
+    for (std::size_t k = 0; k < boundary_intervals.size(); ++k) {
+      if (!interval_used[k])
+        fail("no element lies along the boundary at " + at(mesh_.nodes[boundary_intervals[k].first]));
     }
     double outer_chord_error = 0.0;
-    for (const auto& [edge, count] : uses) {
-      const Vec2 p = 0.5 * (mesh_.nodes[edge.first] + mesh_.nodes[edge.second]);
-      if (count > 2) fail("an element side at " + at(p) + " is shared by " + std::to_string(count) + " elements");
-      const auto interval = boundary_intervals.find(edge);
-      if ((count == 1) != (interval != boundary_intervals.end()))
-        fail("an element side at " + at(p) +
-             (count == 1 ? " is open but not on the boundary" : " is on the boundary but closed"));
-      if (interval != boundary_intervals.end()) interval->second = true;
-    }
-    for (const auto& [edge, used] : boundary_intervals) {
-      if (!used) fail("no element lies along the boundary at " + at(mesh_.nodes[edge.first]));
-    }
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {

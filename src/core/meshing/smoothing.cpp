@@ -30,22 +30,25 @@ constexpr double kWorstBand = 0.1;
 constexpr std::size_t kWorstQuads = 256;
 constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 
-// Signed quality of a quad at its worst corner: the scaled Jacobian, or the
+// Signed quality of corner i of a quad: the scaled Jacobian, or the
 // unnormalised corner area (cross product) when untangling.
 template <bool kScaled>
-double quad_measure(const Vec2 (&v)[4]) {
-  const Vec2 e[4] = {v[1] - v[0], v[2] - v[1], v[3] - v[2], v[0] - v[3]};
-  double worst = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i) {
-    // Corner i: from edge e[i] (to the next corner) to -e[i - 1] (to the previous one).
-    const Vec2 next = e[i], prev = -e[(i + 3) % 4];
-    double value = cross(next, prev);
-    if (kScaled) {
-      const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
-      value = lengths > 0.0 ? value / lengths : -1.0;  // a collapsed side is as bad as it gets
-    }
-    worst = std::min(worst, value);
+double corner_measure(const Vec2 (&v)[4], int i) {
+  // From the edge to the next corner to the reversed edge from the previous one.
+  const Vec2 next = v[(i + 1) % 4] - v[i], prev = -(v[i] - v[(i + 3) % 4]);
+  double value = cross(next, prev);
+  if (kScaled) {
+    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
+    value = lengths > 0.0 ? value / lengths : -1.0;  // a collapsed side is as bad as it gets
   }
+  return value;
+}
+
+// The quad's quality at its worst corner.
+template <bool kScaled>
+double quad_measure(const Vec2 (&v)[4]) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) worst = std::min(worst, corner_measure<kScaled>(v, i));
   return worst;
 }
 
@@ -189,6 +192,43 @@ class Smoother {
     return local;
   }
 
+  // The quads around a node, the node's corner first: the corner opposite
+  // it does not move with it, so it is valued once per search.
+  struct StarQuad {
+    Vec2 v[4];
+    double opposite;
+  };
+
+  template <bool kScaled>
+  void gather_star(int n, std::vector<StarQuad>& star) const {
+    star.resize(offsets_[n + 1] - offsets_[n]);
+    for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const auto& quad = mesh_.quads[corners_[k] / 4];
+      const int at = corners_[k] % 4;
+      StarQuad& s = star[k - offsets_[n]];
+      for (int i = 0; i < 4; ++i) s.v[i] = mesh_.nodes[quad[(at + i) % 4]];
+      s.opposite = corner_measure<kScaled>(s.v, 2);
+    }
+  }
+
+  // Whether putting the star's node at p is better() than `current`: the
+  // same values as local_quality, without finishing the sum once one quad
+  // falls below current.min (then it is not).
+  template <bool kScaled>
+  bool improves(std::vector<StarQuad>& star, Vec2 p, const LocalQuality& current, LocalQuality& candidate) const {
+    candidate = LocalQuality{std::numeric_limits<double>::infinity(), 0.0};
+    for (StarQuad& s : star) {
+      s.v[0] = p;
+      const double value = std::min(std::min(s.opposite, corner_measure<kScaled>(s.v, 0)),
+                                    std::min(corner_measure<kScaled>(s.v, 1), corner_measure<kScaled>(s.v, 3)));
+      if (value < current.min) return false;
+      candidate.min = std::min(candidate.min, value);
+      candidate.mean += value;
+    }
+    candidate.mean /= static_cast<double>(star.size());
+    return better(candidate, current);
+  }
+
   LocalQuality cached_quality(int n) const {
     LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
@@ -291,6 +331,7 @@ class Smoother {
     const LocalQuality current = cached_quality(n);
     if (current.min >= kGoodEnough) return false;
     const Vec2 x = mesh_.nodes[n];
+    gather_star<true>(n, star_);
     const double still2 = kStillFraction * kStillFraction * mean_squared_side(n);
     Vec2 parallelogram, centroid;
     targets(n, parallelogram, centroid);
@@ -300,7 +341,8 @@ class Smoother {
         if (dot(step, step) < still2) continue;
         for (double fraction : kStepFractions) {
           const Vec2 p = x + fraction * step;
-          if (!better(local_quality<true>(n, p), current)) continue;
+          LocalQuality candidate;
+          if (!improves<true>(star_, p, current, candidate)) continue;
           commit(n, p, 0.0);
           return fraction * fraction * dot(step, step) >= still2;
         }
@@ -321,7 +363,8 @@ class Smoother {
         const Vec2 p = edge_point(edge, tc).p;
         const Vec2 step = p - x;
         if (dot(step, step) < still2) break;
-        if (!better(local_quality<true>(n, p), current)) continue;
+        LocalQuality candidate;
+        if (!improves<true>(star_, p, current, candidate)) continue;
         commit(n, p, tc);
         return true;
       }
@@ -363,9 +406,10 @@ class Smoother {
     Vec2 best_p = x0;
     double best_t = t0;
     LocalQuality best = local_quality<kScaled>(n, x0);
+    gather_star<kScaled>(n, star_);
     const auto consider = [&](Vec2 p, double t) {
-      const LocalQuality q = local_quality<kScaled>(n, p);
-      if (!better(q, best)) return false;
+      LocalQuality q;
+      if (!improves<kScaled>(star_, p, best, q)) return false;
       best = q, best_p = p, best_t = t;
       return true;
     };
@@ -535,7 +579,8 @@ class Smoother {
   std::vector<int> behind_;  // boundary neighbours against and along the loop
   std::vector<int> ahead_;
   std::vector<double> quad_sj_;
-  std::vector<char> picked_;  // scratch flags of region()
+  std::vector<char> picked_;    // scratch flags of region()
+  std::vector<StarQuad> star_;  // scratch of the node being moved
 };
 
 }  // namespace

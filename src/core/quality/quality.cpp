@@ -36,6 +36,15 @@ double corner_angle_degrees(const CornerEdges& e) {
   return a * 180.0 / kPi;
 }
 
+// A number that grows with corner_angle_degrees (a pseudo-angle in [0, 4)):
+// the extreme angles of a large mesh are found without an atan2 per corner.
+double angle_order(const CornerEdges& e) {
+  const double x = dot(e.next, e.prev), y = cross(e.next, e.prev);
+  const double size = std::abs(x) + std::abs(y);
+  if (size == 0.0) return 0.0;
+  return y >= 0.0 ? 1.0 - x / size : 3.0 + x / size;
+}
+
 double quad_scaled_jacobian(const std::array<Vec2, 4>& p) {
   double worst = 1.0;
   for (int i = 0; i < 4; ++i) worst = std::min(worst, corner_scaled_jacobian(corner_edges(p, i)));
@@ -75,8 +84,9 @@ QualityReport measure_quality(const QuadMesh& mesh) {
 
   double sum_jacobian = 0.0;
   double min_jacobian = std::numeric_limits<double>::infinity();
-  double min_angle = std::numeric_limits<double>::infinity();
-  double max_angle = -std::numeric_limits<double>::infinity();
+  double min_order = std::numeric_limits<double>::infinity();
+  double max_order = -std::numeric_limits<double>::infinity();
+  CornerEdges min_corner{}, max_corner{};
   for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
     const auto& quad = mesh.quads[q];
     const std::array<Vec2, 4> p{mesh.nodes[quad[0]], mesh.nodes[quad[1]], mesh.nodes[quad[2]], mesh.nodes[quad[3]]};
@@ -84,9 +94,9 @@ QualityReport measure_quality(const QuadMesh& mesh) {
     for (int i = 0; i < 4; ++i) {
       const CornerEdges e = corner_edges(p, i);
       element_jacobian = std::min(element_jacobian, corner_scaled_jacobian(e));
-      const double angle = corner_angle_degrees(e);
-      min_angle = std::min(min_angle, angle);
-      max_angle = std::max(max_angle, angle);
+      const double order = angle_order(e);
+      if (order < min_order) min_order = order, min_corner = e;
+      if (order > max_order) max_order = order, max_corner = e;
       ++elements_at[quad[i]];
     }
     if (element_jacobian <= 0.0) ++report.inverted;
@@ -100,8 +110,8 @@ QualityReport measure_quality(const QuadMesh& mesh) {
   if (!mesh.quads.empty()) {
     report.min_scaled_jacobian = min_jacobian;
     report.mean_scaled_jacobian = sum_jacobian / static_cast<double>(mesh.quads.size());
-    report.min_angle = min_angle;
-    report.max_angle = max_angle;
+    report.min_angle = corner_angle_degrees(min_corner);
+    report.max_angle = corner_angle_degrees(max_corner);
   }
 
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
