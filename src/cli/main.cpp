@@ -233,8 +233,9 @@ void run_decompose(const Options& o, const mm::FaceModel& face) {
   }
 }
 
-// Meshes the face; writes the mesh file, the report and the picture asked for.
-void run_mesh(const Options& o, const mm::FaceModel& face) {
+// The pipeline options of the mesh command, after checking the output
+// format and the size; without --size, a twentieth of `diagonal`.
+mm::PipelineOptions mesh_options(const Options& o, double diagonal) {
   if (!o.output.empty()) {
     const std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
     if (ext != ".inp" && ext != ".msh" && ext != ".vtu")
@@ -243,11 +244,17 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
   if (o.size && !(*o.size > 0.0 && std::isfinite(*o.size)))
     throw mm::InputError("--size must be a positive number, got " + std::to_string(*o.size));
   mm::PipelineOptions options;
-  options.meshing.size = o.size ? *o.size : 0.05 * face.size;
+  options.meshing.size = o.size ? *o.size : 0.05 * diagonal;
   options.meshing.order = o.order;
   options.meshing.smooth = o.smooth;
   options.merge = !o.no_merge;
   if (o.merge) options.tolerance = *o.merge;
+  return options;
+}
+
+// Meshes the face; writes the mesh file, the report and the picture asked for.
+void run_mesh(const Options& o, const mm::FaceModel& face) {
+  const mm::PipelineOptions options = mesh_options(o, face.size);
   const mm::MeshedFace meshed = mm::mesh_face(face, options);
   const mm::QuadMesh& mesh = meshed.blocks.mesh;
   if (!o.output.empty()) {
@@ -281,21 +288,9 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
 // Meshes several faces together; writes the merged mesh, the report (the
 // merged mesh's, each face's under "faces") and a picture of the merged mesh.
 void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
-  if (!o.output.empty()) {
-    const std::string ext = o.output.size() >= 4 ? o.output.substr(o.output.size() - 4) : "";
-    if (ext != ".inp" && ext != ".msh" && ext != ".vtu")
-      throw mm::InputError(o.output + ": unknown mesh format (use .inp, .msh or .vtu)");
-  }
-  if (o.size && !(*o.size > 0.0 && std::isfinite(*o.size)))
-    throw mm::InputError("--size must be a positive number, got " + std::to_string(*o.size));
   double largest = 0.0;
   for (const mm::FaceModel& face : faces) largest = std::max(largest, face.size);
-  mm::PipelineOptions options;
-  options.meshing.size = o.size ? *o.size : 0.05 * largest;
-  options.meshing.order = o.order;
-  options.meshing.smooth = o.smooth;
-  options.merge = !o.no_merge;
-  if (o.merge) options.tolerance = *o.merge;
+  const mm::PipelineOptions options = mesh_options(o, largest);
   const mm::MeshedFaces meshed = mm::mesh_faces(faces, options);
   const int shared_edges = mm::shared_edge_count(meshed.shared);
   if (!o.output.empty()) {

@@ -124,6 +124,18 @@ py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::Mes
   return result;
 }
 
+// mesh and mesh_faces: merge factor or distance given, merging; neither, none.
+mm::PipelineOptions pipeline_options(double size, int order, std::optional<double> merge,
+                                     std::optional<double> merge_size, bool smooth) {
+  mm::PipelineOptions options;
+  options.meshing.size = size;
+  options.meshing.order = order;
+  options.meshing.smooth = smooth;
+  options.merge = merge.has_value() || merge_size.has_value();
+  options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+  return options;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_medialmesh, m) {
@@ -200,12 +212,7 @@ PYBIND11_MODULE(_medialmesh, m) {
       [](const std::string& brep, double size, int order, std::optional<double> merge, std::optional<double> merge_size,
          bool smooth, const std::string& name) {
         const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
-        mm::PipelineOptions options;
-        options.meshing.size = size;
-        options.meshing.order = order;
-        options.meshing.smooth = smooth;
-        options.merge = merge.has_value() || merge_size.has_value();
-        options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth);
         mm::MeshedFace meshed;
         {
           py::gil_scoped_release release;  // the FreeCAD GUI keeps drawing while we mesh
@@ -233,12 +240,7 @@ PYBIND11_MODULE(_medialmesh, m) {
         for (std::size_t i = 0; i < breps.size(); ++i)
           faces.push_back(
               mm::face_model_from_brep_string(breps[i], names ? (*names)[i] : "face " + std::to_string(i + 1)));
-        mm::PipelineOptions options;
-        options.meshing.size = size;
-        options.meshing.order = order;
-        options.meshing.smooth = smooth;
-        options.merge = merge.has_value() || merge_size.has_value();
-        options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth);
         mm::MeshedFaces meshed;
         {
           py::gil_scoped_release release;
