@@ -74,14 +74,8 @@ class MedialAnalysis:
         try:
             self.analyse(obj)
         except Exception as error:  # InputError, or anything unforeseen in a user's file
-            message = report_failure(obj, error)
             obj.Shape = Part.Shape()
-            obj.FlowTypes = []
-            obj.SingularityPositions = []
-            obj.SingularityK = []
-            obj.SumK = 0
-            obj.PredictedSumK = 0
-            obj.Status = message
+            clear_results(obj, report_failure(obj, error))
 
     def analyse(self, obj):
         merge = obj.MergeFactor if obj.MergeFactor > 0 else None
@@ -138,15 +132,8 @@ class MedialDecomposition:
         try:
             self.decompose(obj)
         except Exception as error:  # InputError, or anything unforeseen in a user's file
-            message = report_failure(obj, error)
             obj.Shape = Part.Shape()
-            obj.BlockCount = 0
-            obj.PolygonBlocks = 0
-            obj.SubmapBlocks = 0
-            obj.SplitCount = 0
-            obj.FixedCount = 0
-            obj.Notes = []
-            obj.Status = message
+            clear_results(obj, report_failure(obj, error))
             if obj.Sketch:  # no splits left over from an earlier face
                 obj.Sketch.deleteAllGeometry()
                 obj.Sketch.recompute()
@@ -196,6 +183,16 @@ def update_sketch(sketch, placement, splits):
     # The sketch does not depend on the object that owns it (a hidden link):
     # its shape must follow now, even when only that object is recomputed.
     sketch.recompute()
+
+
+def clear_results(obj, status):
+    """Empty every property of the Results group (no figure left over from
+    an earlier face) and put `status`, the problem, into Status."""
+    empty = {"App::PropertyInteger": 0, "App::PropertyFloat": 0.0}
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Results" and name != "Status":
+            setattr(obj, name, empty.get(obj.getTypeIdOfProperty(name), []))
+    obj.Status = status
 
 
 def report_failure(obj, error):
@@ -323,16 +320,8 @@ class MedialQuadMesh:
         try:
             self.mesh(obj)
         except Exception as error:  # InputError, or anything unforeseen in a user's file
-            message = report_failure(obj, error)
             obj.FemMesh = Fem.FemMesh()
-            obj.QuadCount = 0
-            obj.NodeCount = 0
-            obj.MinScaledJacobian = 0.0
-            obj.MeanScaledJacobian = 0.0
-            obj.IrregularNodes = 0
-            obj.Seconds = 0.0
-            obj.Notes = []
-            obj.Status = message
+            clear_results(obj, report_failure(obj, error))
             if obj.Sketch:  # no splits left over from earlier faces
                 obj.Sketch.deleteAllGeometry()
                 obj.Sketch.recompute()
