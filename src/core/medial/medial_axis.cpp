@@ -462,8 +462,9 @@ class Builder {
   // its major axis). The peaks within the end's radius r along the boundary
   // either way from its foot are candidates (the discretised end lies a few
   // chords off, and its two feet may already have met or may straddle a
-  // closed curve's seam); the one whose centre is nearest the end point p is
-  // it. Empty if no true local maximum of curvature lies there.
+  // closed curve's seam); the one whose centre is nearest the end point p
+  // among those whose disc is empty is it. Empty if no true local maximum of
+  // curvature lies there.
   std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
     if (touches.empty() || r <= 0) return std::nullopt;
     BoundaryPlace foot = touches.front();
@@ -485,6 +486,7 @@ class Builder {
     run.insert(run.end(), ahead.begin() + 1, ahead.end());
     const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
     std::optional<MedialVertex> best;
+    bool best_empty = false;
     for (std::size_t i = 1; i + 1 < run.size(); ++i) {
       const double k = kappa(run[i]);
       if (k <= 0 || k < kappa(run[i - 1]) || k < kappa(run[i + 1])) continue;
@@ -513,7 +515,11 @@ class Builder {
       v.r = 1.0 / curvature(edge, t);
       v.p = at.point + v.r * perp(edge_tangent(edge, t));
       v.touches = {at};
-      if (!best || distance(v.p, p) < distance(best->p, p)) best = v;
+      // A peak whose disc holds boundary is no contact (a ripple beside the
+      // true one, when the end stopped short of it): an empty disc wins.
+      const bool empty = disc_is_empty(v.p, v.r);
+      if (!best || empty > best_empty || (empty == best_empty && distance(v.p, p) < distance(best->p, p)))
+        best = v, best_empty = empty;
     }
     return best;
   }
@@ -530,17 +536,8 @@ class Builder {
   // places; elsewhere it is an ordinary point of the edge's bisector.
   MedialPoint transition_point(int node, int voronoi_edge) const {
     const Vec2 p = node_point(node);
-    // Cheap test first: the sites around the node must lie on three boundary edges.
-    std::vector<std::pair<int, int>> edges;
-    for (int e : nodes_[node].edges) {
-      for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right}) {
-        const BoundarySegment& s = graph_.segments[site.segment];
-        if (std::find(edges.begin(), edges.end(), std::make_pair(s.loop, s.edge)) == edges.end()) {
-          edges.emplace_back(s.loop, s.edge);
-        }
-      }
-    }
-    if (edges.size() < 3) return medial_point(voronoi_edge, p);
+    // Three distinct places, not three boundary edges: on a closed B-spline
+    // that is one edge every place lies on edge 0.
     const std::vector<BoundaryPlace> places = touches_at(node, p);
     if (places.size() == 3) {
       const Equidistant exact = equidistant(index_, p, places);
