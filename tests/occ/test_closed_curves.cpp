@@ -233,8 +233,9 @@ TEST(ClosedCurves, StarSplineOutlinesHaveValidAxes) {
 }
 
 // The command-line tool never prints a wrong result: on faces the stages may
-// get wrong (today the first, whose axis falls into two pieces), it exits
-// with code 3 and one line naming the face and the check.
+// get wrong (the first's axis once fell into two pieces; today both pass and
+// their sums of k are checked), it exits with code 3 and one line naming the
+// face and the check.
 TEST(ClosedCurves, CliReportsAFailedSelfCheckWithExitCode3) {
   const Handle(Geom_BSplineCurve) wavy = interpolated_outline(2.0);
   const double period = wavy->LastParameter() - wavy->FirstParameter();
