@@ -61,6 +61,7 @@ class Builder {
     keep_genuine_edges();
     build_nodes();
     prune_ripple_branches();
+    keep_connected_axis();
     classify_nodes();
     trace_chains();
     return std::move(axis_);
@@ -239,7 +240,8 @@ class Builder {
   // curvature holds no boundary: else another edge cuts it off first.
   bool curvature_end_is_medial(int node) const {
     const Vec2 p = node_point(node);
-    const std::optional<MedialVertex> v = curvature_contact(touches_at(node, p));
+    const std::optional<MedialVertex> v =
+        curvature_contact(p, graph_.vertices[node_vertex_[node]].r, touches_at(node, p));
     return v && disc_is_empty(v->p, v->r);
   }
 
@@ -277,6 +279,42 @@ class Builder {
         }
         changed = true;
       }
+    }
+  }
+
+  // The medial axis is connected, its pieces of Voronoi edges joined directly
+  // or through the centre of an arc they run into. Near a curvature contact on
+  // a nearly round cap the two feet stay within kSamePlace of each other over
+  // a long stretch, so the test of keep_genuine_edges flips back and forth
+  // there and leaves fragments beyond a gap: keep only the longest connected
+  // set of edges (pieces that reach the same finite contact counting as one).
+  void keep_connected_axis() {
+    const std::size_t n = nodes_.size();
+    UnionFind sets(n + axis_.vertices.size());
+    for (const auto& [e, ends] : edge_nodes_) sets.unite(ends.first, ends.second);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (nodes_[i].edges.size() != 1) continue;
+      const int contact = finite_contact_for(static_cast<int>(i));
+      if (contact >= 0) sets.unite(static_cast<int>(i), static_cast<int>(n) + contact);
+    }
+    std::map<int, double> length;
+    for (const auto& [e, ends] : edge_nodes_)
+      length[sets.find(ends.first)] += distance(node_point(ends.first), node_point(ends.second));
+    if (length.size() < 2) return;
+    const int keep = std::max_element(length.begin(), length.end(), [](const auto& a, const auto& b) {
+                       return a.second < b.second;
+                     })->first;
+    for (auto it = edge_nodes_.begin(); it != edge_nodes_.end();) {
+      const auto [a, b] = it->second;
+      if (sets.find(a) == keep) {
+        ++it;
+        continue;
+      }
+      for (int end : {a, b}) {
+        auto& list = nodes_[end].edges;
+        list.erase(std::remove(list.begin(), list.end(), it->first), list.end());
+      }
+      it = edge_nodes_.erase(it);
     }
   }
 
@@ -391,7 +429,7 @@ class Builder {
     fallback.p = p;
     fallback.r = r;
     fallback.touches = touches;
-    nodes_[node].vertex = add_vertex(curvature_contact(touches).value_or(fallback));
+    nodes_[node].vertex = add_vertex(curvature_contact(p, r, touches).value_or(fallback));
   }
 
   int add_vertex(const MedialVertex& v) {
@@ -399,105 +437,91 @@ class Builder {
     return static_cast<int>(axis_.vertices.size()) - 1;
   }
 
-  // A stretch of one edge, from parameter t0 to t1.
-  struct Stretch {
-    int loop, edge;
-    double t0, t1;
-  };
-
-  // The boundary between places a and b along their smooth run, the shorter
-  // way round (a closed curve's seam is crossed like any tangent join).
-  // Empty if a corner lies between them both ways.
-  std::vector<Stretch> run_between(const BoundaryPlace& a, const BoundaryPlace& b) const {
-    std::vector<Stretch> best;
-    double best_length = 1e300;
-    const int count = index_.edge_count(a.loop);
-    for (int way : {1, -1}) {
-      std::vector<Stretch> path;
-      int e = a.edge;
-      double t = a.t;
-      bool reached = false;
-      for (int step = 0; step <= count && !reached; ++step) {
-        const BoundaryEdge& edge = index_.edge(a.loop, e);
-        const double forward = (edge.t_end - edge.t_start) * way;  // > 0: parameter grows along `way`
-        const double end = way > 0 ? edge.t_end : edge.t_start;
-        if (e == b.edge && b.loop == a.loop && (b.t - t) * forward >= 0) {
-          path.push_back({a.loop, e, t, b.t});
-          reached = true;
-          break;
-        }
-        path.push_back({a.loop, e, t, end});
-        const int vertex = way > 0 ? (e + 1) % count : e;
-        if (index_.is_corner(a.loop, vertex)) break;
-        e = way > 0 ? (e + 1) % count : (e + count - 1) % count;
-        const BoundaryEdge& next = index_.edge(a.loop, e);
-        t = way > 0 ? next.t_start : next.t_end;
-      }
-      if (!reached) continue;
-      double length = 0.0;
-      for (const Stretch& s : path) {
-        const BoundaryEdge& edge = index_.edge(s.loop, s.edge);
-        for (int k = 0; k < 16; ++k) {
-          length += distance(evaluate(edge.curve, s.t0 + (s.t1 - s.t0) * k / 16).p,
-                             evaluate(edge.curve, s.t0 + (s.t1 - s.t0) * (k + 1) / 16).p);
-        }
-      }
-      if (length < best_length) best_length = length, best = path;
+  // A place on a loop moved by arc length ds along the loop's order (way +1)
+  // or against it (-1), across tangent joins (a closed curve's seam is one);
+  // false at a corner, where no curvature contact can lie beyond.
+  bool advance(BoundaryPlace& q, int way, double ds) const {
+    const BoundaryEdge& edge = index_.edge(q.loop, q.edge);
+    const double sense = (edge.t_end >= edge.t_start ? 1.0 : -1.0) * way;
+    const double t = q.t + sense * ds / std::max(norm(evaluate(edge.curve, q.t).d1), 1e-300);
+    const double end = way > 0 ? edge.t_end : edge.t_start;
+    if ((end - t) * sense > 0) {
+      q = index_.place(q.loop, q.edge, t);
+      return true;
     }
-    return best;
+    const int count = index_.edge_count(q.loop);
+    if (index_.is_corner(q.loop, way > 0 ? (q.edge + 1) % count : q.edge)) return false;
+    const int next = way > 0 ? (q.edge + 1) % count : (q.edge + count - 1) % count;
+    const BoundaryEdge& following = index_.edge(q.loop, next);
+    q = index_.place(q.loop, next, way > 0 ? following.t_start : following.t_end);
+    return true;
   }
 
   // The end of an axis between two places of one smooth curve: the centre of
-  // curvature where the curvature between them peaks (an ellipse's is at
-  // x = +-(a^2 - b^2)/a on its major axis).
-  // Empty if there is no interior curvature peak to snap to.
-  std::optional<MedialVertex> curvature_contact(const std::vector<BoundaryPlace>& touches) const {
-    if (touches.empty()) return std::nullopt;
-    std::vector<Stretch> stretches;
-    if (touches.size() >= 2 && touches[0].loop == touches[1].loop) {
-      stretches = run_between(touches[0], touches[1]);
-    } else if (touches.size() == 1) {
-      // The feet have already met: look round the one place left.
-      const BoundaryPlace& at = touches[0];
-      const BoundaryEdge& edge = index_.edge(at.loop, at.edge);
-      const double lo = std::min(edge.t_start, edge.t_end), hi = std::max(edge.t_start, edge.t_end);
-      const double reach = 0.05 * (hi - lo);
-      stretches.push_back({at.loop, at.edge, std::max(lo, at.t - reach), std::min(hi, at.t + reach)});
-    }
-    // Coarse search along the stretch between the feet, then golden-section refinement.
-    const Stretch* best = nullptr;
-    double best_t = 0.0, best_k = -1e300, step = 0.0;
-    for (const Stretch& s : stretches) {
-      const BoundaryEdge& edge = index_.edge(s.loop, s.edge);
-      for (int k = 0; k <= 32; ++k) {
-        const double t = s.t0 + (s.t1 - s.t0) * k / 32;
-        const double kappa = curvature(edge, t);
-        if (kappa > best_k) best = &s, best_t = t, best_k = kappa, step = std::abs(s.t1 - s.t0) / 32;
+  // curvature at a curvature peak (an ellipse's is at x = +-(a^2 - b^2)/a on
+  // its major axis). The peaks within the end's radius r along the boundary
+  // either way from its foot are candidates (the discretised end lies a few
+  // chords off, and its two feet may already have met or may straddle a
+  // closed curve's seam); the one whose centre is nearest the end point p
+  // among those whose disc is empty is it. Empty if no true local maximum of
+  // curvature lies there.
+  std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
+    if (touches.empty() || r <= 0) return std::nullopt;
+    BoundaryPlace foot = touches.front();
+    foot.corner_itself = false;
+    foot = nearest_on_run(index_, foot, p);
+    // Samples along the run, in order, from r behind the foot to r ahead.
+    constexpr int kSamples = 64;
+    const double ds = r / kSamples;
+    std::vector<BoundaryPlace> behind{foot}, ahead{foot};
+    for (int way : {-1, 1}) {
+      auto& side = way < 0 ? behind : ahead;
+      for (int k = 0; k < kSamples; ++k) {
+        BoundaryPlace q = side.back();
+        if (!advance(q, way, ds)) break;
+        side.push_back(q);
       }
     }
-    if (!best || best_k <= 0) return std::nullopt;
-    const BoundaryEdge& edge = index_.edge(best->loop, best->edge);
-    const double lo = std::min(best->t0, best->t1), hi = std::max(best->t0, best->t1);
-    double a = std::max(lo, best_t - step), b = std::min(hi, best_t + step);
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double x1 = b - g * (b - a), x2 = a + g * (b - a);
-    double f1 = curvature(edge, x1), f2 = curvature(edge, x2);
-    for (int i = 0; i < 200 && b - a > 1e-15 * (1 + std::abs(a)); ++i) {
-      if (f1 < f2) {
-        a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = curvature(edge, x2);
-      } else {
-        b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = curvature(edge, x1);
+    std::vector<BoundaryPlace> run(behind.rbegin(), behind.rend());
+    run.insert(run.end(), ahead.begin() + 1, ahead.end());
+    const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
+    std::optional<MedialVertex> best;
+    bool best_empty = false;
+    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
+      const double k = kappa(run[i]);
+      if (k <= 0 || k < kappa(run[i - 1]) || k < kappa(run[i + 1])) continue;
+      // Golden-section refinement within a sample step either side, on the
+      // sample's edge (a closed curve's seam may lie between the samples).
+      const BoundaryPlace& at_sample = run[i];
+      const BoundaryEdge& edge = index_.edge(at_sample.loop, at_sample.edge);
+      const double dt = ds / std::max(norm(evaluate(edge.curve, at_sample.t).d1), 1e-300);
+      double a = std::max(std::min(edge.t_start, edge.t_end), at_sample.t - dt);
+      double b = std::min(std::max(edge.t_start, edge.t_end), at_sample.t + dt);
+      const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+      double x1 = b - g * (b - a), x2 = a + g * (b - a);
+      double f1 = curvature(edge, x1), f2 = curvature(edge, x2);
+      for (int it = 0; it < 200 && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
+        if (f1 < f2) {
+          a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = curvature(edge, x2);
+        } else {
+          b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = curvature(edge, x1);
+        }
       }
+      const double t = 0.5 * (a + b);
+      const BoundaryPlace at = index_.place(at_sample.loop, at_sample.edge, t);
+      if (at.corner >= 0) continue;  // the peak is at a corner: no curvature contact here
+      MedialVertex v;
+      v.kind = MedialVertexKind::CurvatureContact;
+      v.r = 1.0 / curvature(edge, t);
+      v.p = at.point + v.r * perp(edge_tangent(edge, t));
+      v.touches = {at};
+      // A peak whose disc holds boundary is no contact (a ripple beside the
+      // true one, when the end stopped short of it): an empty disc wins.
+      const bool empty = disc_is_empty(v.p, v.r);
+      if (!best || empty > best_empty || (empty == best_empty && distance(v.p, p) < distance(best->p, p)))
+        best = v, best_empty = empty;
     }
-    const double t = 0.5 * (a + b);
-    const BoundaryPlace at = index_.place(best->loop, best->edge, t);
-    if (at.corner >= 0) return std::nullopt;  // the peak is at a corner: no curvature contact here
-    MedialVertex v;
-    v.kind = MedialVertexKind::CurvatureContact;
-    v.r = 1.0 / curvature(edge, t);
-    v.p = at.point + v.r * perp(edge_tangent(edge, t));
-    v.touches = {at};
-    return v;
+    return best;
   }
 
   // The medial point on the bisector of an edge's two sites nearest to m.
@@ -512,17 +536,8 @@ class Builder {
   // places; elsewhere it is an ordinary point of the edge's bisector.
   MedialPoint transition_point(int node, int voronoi_edge) const {
     const Vec2 p = node_point(node);
-    // Cheap test first: the sites around the node must lie on three boundary edges.
-    std::vector<std::pair<int, int>> edges;
-    for (int e : nodes_[node].edges) {
-      for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right}) {
-        const BoundarySegment& s = graph_.segments[site.segment];
-        if (std::find(edges.begin(), edges.end(), std::make_pair(s.loop, s.edge)) == edges.end()) {
-          edges.emplace_back(s.loop, s.edge);
-        }
-      }
-    }
-    if (edges.size() < 3) return medial_point(voronoi_edge, p);
+    // Three distinct places, not three boundary edges: on a closed B-spline
+    // that is one edge every place lies on edge 0.
     const std::vector<BoundaryPlace> places = touches_at(node, p);
     if (places.size() == 3) {
       const Equidistant exact = equidistant(index_, p, places);

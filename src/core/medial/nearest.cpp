@@ -38,6 +38,15 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
     const double h = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
     double next = h > 0 ? t - g / h : t - g / std::max(dot(c.d1, c.d1), 1e-300);
     next = std::clamp(next, a, b);
+    // A step must not lead further away: where the distance is flat (m near
+    // a centre of curvature) or the curve bends back, a full Newton step can
+    // jump to another part of the curve; shorten it until it goes downhill.
+    const double here = dot(c.p - m, c.p - m);
+    for (int k = 0; k < 60; ++k) {
+      const Vec2 q = evaluate(edge.curve, next).p;
+      if (dot(q - m, q - m) <= here) break;
+      next = t + 0.5 * (next - t);
+    }
     if (std::abs(next - t) <= 1e-15 * (b - a)) {
       t = next;
       break;
