@@ -793,16 +793,22 @@ class Decomposer {
   // Cuts through a unit's members: they become corners of blocks. Only
   // switches on edges and junctions can be fixed (a finite contact's k
   // belongs to the disc sector round it, which no cut can take from it).
-  // Whether fixing the unit may move a finite contact's singularity onto
-  // its arc: -k convex corners on the touched arc instead of a node inside
-  // (what mapped meshing does with a fillet or a round end).
+  // Whether fixing the unit may move a contact's singularity onto the
+  // boundary it touches: -k convex corners on a finite contact's arc, or at
+  // a curvature contact's touching point, instead of a node inside (what
+  // mapped meshing does with a fillet, a round end or a bump: a k = -1 at
+  // the end of a branch into a bump otherwise sits beside the reflex corner
+  // of the cut through the branch's k = +1 and has no convex block).
+  static bool contact_vertex(const MedialVertex& v) {
+    return v.kind == MedialVertexKind::FiniteContact || v.kind == MedialVertexKind::CurvatureContact;
+  }
   bool boundary_fixable(int u) const {
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
       if (loc.vertex < 0) continue;
       const MedialVertex& v = axis_.vertices[loc.vertex];
       const bool junction = v.kind == MedialVertexKind::Junction && v.edges.size() >= 2;
-      const bool contact = v.kind == MedialVertexKind::FiniteContact && flow_.singularities[m].k < 0;
+      const bool contact = contact_vertex(v) && flow_.singularities[m].k < 0;
       if (!junction && !contact) return false;
     }
     return true;
@@ -843,7 +849,7 @@ class Decomposer {
     ++version_;
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
-      if (loc.vertex >= 0 && axis_.vertices[loc.vertex].kind == MedialVertexKind::FiniteContact) {
+      if (loc.vertex >= 0 && contact_vertex(axis_.vertices[loc.vertex])) {
         boundary_fixed_[loc.vertex] -= flow_.singularities[m].k;
         continue;
       }
@@ -1830,15 +1836,21 @@ class Decomposer {
     // boundary piece leaves along arm 0 and arrives along arm nc (2 if smooth).
     std::vector<int> arm_out, arm_in;
     std::vector<int> bend;  // per piece: elements at its start when it starts at a split's bend, else -1
+    // A singularity fixed onto a point of the boundary (a curvature
+    // contact's touch: a range of no length) puts its corners at the start
+    // of the next boundary piece: 2 - corners elements there.
+    int at_point = -1;
     for (const Item& it : o.items) {
       if (!it.split) {
         std::vector<bool> virtual_start;
         std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start, sampled);
+        if (pieces.empty() && it.virtual_corners > 0) at_point = 2 - it.virtual_corners;
         for (std::size_t k = 0; k < pieces.size(); ++k) {
           flat.pieces.push_back(std::move(pieces[k]));
           arm_out.push_back(0);
           arm_in.push_back(-1);
-          bend.push_back(virtual_start[k] ? 1 : -1);  // a singularity fixed onto the boundary
+          bend.push_back(virtual_start[k] ? 1 : at_point);  // a singularity fixed onto the boundary
+          at_point = -1;
         }
         continue;
       }
@@ -1857,6 +1869,10 @@ class Decomposer {
       arm_out.push_back(-1);
       arm_in.push_back(it.arm_b);
       bend.push_back(it.bend);
+    }
+    // The point was the outline's last item: its corners go to the first boundary piece.
+    for (std::size_t i = 0; at_point >= 0 && i < flat.pieces.size(); ++i) {
+      if (flat.pieces[i].split < 0) bend[i] = at_point, at_point = -1;
     }
     const std::size_t count = flat.pieces.size();
     flat.start_type.assign(count, 2);
