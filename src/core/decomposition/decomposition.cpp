@@ -177,10 +177,17 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   cost[0][n * 16] = 0.0;
   for (int i = 0; i < n; ++i) {
     const double angle = interior_quarters(refs, i, types[i], tol);
+    const OutlinePiece& before = pieces[(i + n - 1) % n];
+    const bool inside_edge = before.split < 0 && pieces[i].split < 0 && before.loop >= 0 &&
+                             before.loop == pieces[i].loop && before.edge == pieces[i].edge;
     for (int state = 0; state < width * 16; ++state) {
       if (cost[i][state] == kInf) continue;
       const int turning = state / 16 - n, used = state % 16;
       for (int type = 1; type <= 3; ++type) {
+        // A convex corner inside one boundary edge where it runs straight
+        // (or turns in) gives its element an angle of 180 degrees or more:
+        // its neighbours along the edge cannot leave it.
+        if (type == 1 && inside_edge && angle > 2.0 - 1e-3) continue;
         const int next_turning = turning + 2 - type;
         if (next_turning < -n || next_turning > n) continue;
         const int direction = ((next_turning % 4) + 4) % 4;
@@ -208,30 +215,31 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   return typing;
 }
 
-// The two halves of a boundary piece, cut at its middle parameter.
-std::pair<OutlinePiece, OutlinePiece> halves(const FaceModel& face, const OutlinePiece& piece) {
+// A boundary piece cut into `parts` equal ranges of its parameter.
+std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
   const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
-  const double middle = 0.5 * (piece.t_from + piece.t_to);
-  OutlinePiece first = piece, second = piece;
-  first.t_to = second.t_from = middle;
-  const int samples = std::max(2, static_cast<int>(piece.points.size()) / 2);
-  first.points = {piece.points.front()};
-  second.points = {edge_point(e, middle).p};
-  for (int k = 1; k < samples; ++k) {
-    const double f = static_cast<double>(k) / samples;
-    first.points.push_back(edge_point(e, piece.t_from + f * (middle - piece.t_from)).p);
-    second.points.push_back(edge_point(e, middle + f * (piece.t_to - middle)).p);
+  const int samples = std::max(2, static_cast<int>(piece.points.size()) / parts);
+  const double span = piece.t_to - piece.t_from;
+  std::vector<OutlinePiece> result;
+  for (int p = 0; p < parts; ++p) {
+    OutlinePiece part = piece;
+    part.t_from = piece.t_from + span * p / parts;
+    part.t_to = p + 1 == parts ? piece.t_to : piece.t_from + span * (p + 1) / parts;
+    part.points = {p == 0 ? piece.points.front() : edge_point(e, part.t_from).p};
+    for (int k = 1; k < samples; ++k)
+      part.points.push_back(edge_point(e, part.t_from + (part.t_to - part.t_from) * k / samples).p);
+    part.points.push_back(p + 1 == parts ? piece.points.back() : edge_point(e, part.t_to).p);
+    result.push_back(std::move(part));
   }
-  first.points.push_back(second.points.front());
-  second.points.push_back(piece.points.back());
-  return {first, second};
+  return result;
 }
 
 // A submapped block whose corner types the mesher cannot submap (a cusp, a
 // slit, or sides that leave a direction without an opposite, whose counts
 // would have to be 0) is re-typed at its piece starts (submap_typing). A
-// block with too few piece starts for that gets its boundary pieces cut at
-// their middles, and keeps the cuts where the typing puts a corner.
+// block with too few piece starts for that (or whose only typings put a
+// convex corner where its outline runs straight) gets its boundary pieces cut
+// into halves, else thirds, and keeps the cuts where the typing puts a corner.
 // Returns false when no typing submaps.
 bool make_submappable(const FaceModel& face, Block& b, double tol) {
   std::vector<OutlinePiece> pieces;
@@ -246,28 +254,29 @@ bool make_submappable(const FaceModel& face, Block& b, double tol) {
   for (const int type : types) total += 2 - type;
   if (total == 4 && submappable(types)) return true;
   std::vector<int> typing = submap_typing(pieces, types, tol);
-  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a middle cut
-  if (typing.empty()) {
+  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a cut made here
+  for (int parts = 2; typing.empty() && parts <= 3; ++parts) {
     std::vector<OutlinePiece> finer;
     std::vector<int> finer_types;
     cut.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
-      finer_types.push_back(types[i]);
-      cut.push_back(false);
       if (pieces[i].split >= 0 || pieces[i].loop < 0 || std::abs(pieces[i].t_to - pieces[i].t_from) <= 0.0) {
         finer.push_back(pieces[i]);
+        finer_types.push_back(types[i]);
+        cut.push_back(false);
         continue;
       }
-      auto [first, second] = halves(face, pieces[i]);
-      finer.push_back(first);
-      finer.push_back(second);
-      finer_types.push_back(2);
-      cut.push_back(true);
+      const std::vector<OutlinePiece> split = parts_of(face, pieces[i], parts);
+      for (std::size_t p = 0; p < split.size(); ++p) {
+        finer.push_back(split[p]);
+        finer_types.push_back(p == 0 ? types[i] : 2);
+        cut.push_back(p > 0);
+      }
     }
     typing = submap_typing(finer, finer_types, tol);
-    if (typing.empty()) return false;
-    pieces = std::move(finer);
+    if (!typing.empty()) pieces = std::move(finer);
   }
+  if (typing.empty()) return false;
   const int n = static_cast<int>(pieces.size());
   int first = 0;
   while (typing[first] == 2) ++first;  // a turning of 4 from types 1..3 has corners
