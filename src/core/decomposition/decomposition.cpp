@@ -807,7 +807,10 @@ class Decomposer {
   // a curvature contact's touching point, instead of a node inside (what
   // mapped meshing does with a fillet, a round end or a bump: a k = -1 at
   // the end of a branch into a bump otherwise sits beside the reflex corner
-  // of the cut through the branch's k = +1 and has no convex block).
+  // of the cut through the branch's k = +1 and has no convex block); and a
+  // k > 0 at a flare onto its corner, which gets k elements more (a slot's
+  // corner in a thin strip, whose k = +1 no merge joins to the k = -1 beside
+  // it, a flare's radius being 0).
   static bool contact_vertex(const MedialVertex& v) {
     return v.kind == MedialVertexKind::FiniteContact || v.kind == MedialVertexKind::CurvatureContact;
   }
@@ -817,7 +820,8 @@ class Decomposer {
       if (loc.vertex < 0) continue;
       const MedialVertex& v = axis_.vertices[loc.vertex];
       const bool junction = v.kind == MedialVertexKind::Junction && v.edges.size() >= 2;
-      const bool contact = contact_vertex(v) && flow_.singularities[m].k < 0;
+      const bool contact = (contact_vertex(v) && flow_.singularities[m].k < 0) ||
+                           (v.kind == MedialVertexKind::Flare && flow_.singularities[m].k > 0);
       if (!junction && !contact) return false;
     }
     return true;
@@ -858,7 +862,8 @@ class Decomposer {
     ++version_;
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
-      if (loc.vertex >= 0 && contact_vertex(axis_.vertices[loc.vertex])) {
+      if (loc.vertex >= 0 &&
+          (contact_vertex(axis_.vertices[loc.vertex]) || axis_.vertices[loc.vertex].kind == MedialVertexKind::Flare)) {
         boundary_fixed_[loc.vertex] -= flow_.singularities[m].k;
         continue;
       }
@@ -1846,20 +1851,24 @@ class Decomposer {
     std::vector<int> arm_out, arm_in;
     std::vector<int> bend;  // per piece: elements at its start when it starts at a split's bend, else -1
     // A singularity fixed onto a point of the boundary (a curvature
-    // contact's touch: a range of no length) puts its corners at the start
-    // of the next boundary piece: 2 - corners elements there.
-    int at_point = -1;
+    // contact's touch or a flare's corner: a range of no length) moves its
+    // corners to the start of the next boundary piece: its elements there
+    // less the corners (2 - 1 at a curvature contact with k = -1; a corner
+    // of nc elements with a flare's k = +1 gets nc + 1).
+    int at_point = 0;
+    std::vector<int> moved;  // per piece: corners of a singularity fixed at its start, taken from its type
     for (const Item& it : o.items) {
       if (!it.split) {
         std::vector<bool> virtual_start;
         std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start, sampled);
-        if (pieces.empty() && it.virtual_corners > 0) at_point = 2 - it.virtual_corners;
+        if (pieces.empty()) at_point += it.virtual_corners;
         for (std::size_t k = 0; k < pieces.size(); ++k) {
           flat.pieces.push_back(std::move(pieces[k]));
           arm_out.push_back(0);
           arm_in.push_back(-1);
-          bend.push_back(virtual_start[k] ? 1 : at_point);  // a singularity fixed onto the boundary
-          at_point = -1;
+          bend.push_back(virtual_start[k] ? 1 : -1);  // a singularity fixed onto the boundary
+          moved.push_back(at_point);
+          at_point = 0;
         }
         continue;
       }
@@ -1874,14 +1883,16 @@ class Decomposer {
       arm_out.push_back(it.arm_a);
       arm_in.push_back(-1);
       bend.push_back(-1);
+      moved.push_back(0);
       flat.pieces.push_back(second);
       arm_out.push_back(-1);
       arm_in.push_back(it.arm_b);
       bend.push_back(it.bend);
+      moved.push_back(0);
     }
     // The point was the outline's last item: its corners go to the first boundary piece.
-    for (std::size_t i = 0; at_point >= 0 && i < flat.pieces.size(); ++i) {
-      if (flat.pieces[i].split < 0) bend[i] = at_point, at_point = -1;
+    for (std::size_t i = 0; at_point != 0 && i < flat.pieces.size(); ++i) {
+      if (flat.pieces[i].split < 0) moved[i] += at_point, at_point = 0;
     }
     const std::size_t count = flat.pieces.size();
     flat.start_type.assign(count, 2);
@@ -1906,6 +1917,7 @@ class Decomposer {
         }
         flat.start_type[i] = (a.split < 0 ? nc : arm_in[prev]) - (b.split < 0 ? 0 : arm_out[i]);
       }
+      flat.start_type[i] -= moved[i];
     }
     return flat;
   }
