@@ -17,7 +17,7 @@ std::string where(Vec2 p) {
 }
 }  // namespace
 
-std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& mesh, double size) {
+std::vector<std::string> mesh_validity_problems(const FaceModel& face, const QuadMesh& mesh) {
   std::vector<std::string> problems;
   const auto problem = [&](const std::string& text) {
     if (problems.size() < 20) problems.push_back(text);
@@ -104,6 +104,14 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
     problem("the mesh's boundary is " + std::to_string(boundary_length) + " long, the face's " +
             std::to_string(face_length));
   }
+  return problems;
+}
+
+std::string element_count_problem(const FaceModel& face, const QuadMesh& mesh, double size) {
+  std::map<std::pair<int, int>, int> sides;
+  for (const auto& q : mesh.quads) {
+    for (int i = 0; i < 4; ++i) ++sides[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
+  }
   const double expected = face.area / (size * size);
   const double quads = static_cast<double>(mesh.quads.size());
   // The boundary's own intervals (at least one per edge, at most 45 degrees
@@ -114,9 +122,16 @@ std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& me
   for (const auto& entry : sides) boundary_sides += entry.second == 1 ? 1 : 0;
   const double from_boundary = 0.0625 * boundary_sides * boundary_sides;
   if (expected > 20 && (quads < 0.4 * expected || quads > 4.0 * std::max(expected, from_boundary))) {
-    problem(std::to_string(mesh.quads.size()) + " elements for area / H^2 = " + std::to_string(expected) + " and " +
-            std::to_string(boundary_sides) + " boundary intervals");
+    return std::to_string(mesh.quads.size()) + " elements for area / H^2 = " + std::to_string(expected) + " and " +
+           std::to_string(boundary_sides) + " boundary intervals";
   }
+  return "";
+}
+
+std::vector<std::string> mesh_problems(const FaceModel& face, const QuadMesh& mesh, double size) {
+  std::vector<std::string> problems = mesh_validity_problems(face, mesh);
+  const std::string count = element_count_problem(face, mesh, size);
+  if (!count.empty() && problems.size() < 20) problems.push_back(count);
   return problems;
 }
 

