@@ -28,14 +28,17 @@ def is_planar(face):
         return False
 
 
-class FaceCommand:
-    """A command that makes one object per selected planar face, in one
-    transaction; subclasses say what to make and what to tell the user."""
+class PlanarFaceCommand:
+    """A command on the selected planar faces, active when there is one;
+    subclasses say which faces count as selected and what to do with them."""
 
     name = ""  # the transaction's name, and the command's in messages
 
+    def selection(self):
+        return selected_faces()
+
     def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in selected_faces())
+        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in self.selection())
 
     def Activated(self):
         # Runs from a toolbar: nothing may escape into FreeCAD.
@@ -44,11 +47,16 @@ class FaceCommand:
         except Exception as error:
             FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
 
+
+class FaceCommand(PlanarFaceCommand):
+    """A command that makes one object per selected planar face, in one
+    transaction; subclasses say what to make and what to tell the user."""
+
     def run_on_selection(self):
         doc = FreeCAD.ActiveDocument
         doc.openTransaction(self.name)
         made = []
-        for obj, subname, face in selected_faces():
+        for obj, subname, face in self.selection():
             if not is_planar(face):
                 FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar\n")
                 continue
@@ -116,7 +124,7 @@ def selected_faces_and_sheets():
     return faces
 
 
-class CommandQuadMesh:
+class CommandQuadMesh(PlanarFaceCommand):
     """Mesh the selected planar faces together into one parametric quad mesh,
     put it into the active FEM Analysis and open its task panel, as FreeCAD's
     Gmsh command does (femcommands/commands.py, _MeshGmshFromShape)."""
@@ -131,16 +139,8 @@ class CommandQuadMesh:
             "quads into one FEM mesh object, put into the active Analysis; set its parameters in the task panel",
         }
 
-    def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and any(
-            is_planar(face) for _, _, face in selected_faces_and_sheets())
-
-    def Activated(self):
-        # Runs from a toolbar: nothing may escape into FreeCAD.
-        try:
-            self.run_on_selection()
-        except Exception as error:
-            FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
+    def selection(self):
+        return selected_faces_and_sheets()
 
     def run_on_selection(self):
         if FreeCADGui.Control.activeDialog():
@@ -148,7 +148,7 @@ class CommandQuadMesh:
             return
         doc = FreeCAD.ActiveDocument
         faces = []
-        for obj, subname, face in selected_faces_and_sheets():
+        for obj, subname, face in self.selection():
             if is_planar(face):
                 faces.append((obj, subname))
             else:
