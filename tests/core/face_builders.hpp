@@ -119,4 +119,14 @@ inline FaceModel random_notched_face(std::mt19937& rng, int number) {
   return face(loops, "random notched face " + std::to_string(number));
 }
 
+// The random faces of the meshing test and of mesh_census, in one order:
+// every third a notched face, the others random faces; meshed at 0.08 and
+// 0.03 of the diagonal in turn.
+inline FaceModel random_meshing_face(std::mt19937& rng, int number) {
+  return number % 3 == 2 ? random_notched_face(rng, number) : random_face(rng, number);
+}
+inline double random_meshing_size(const FaceModel& face, int number) {
+  return (number % 2 ? 0.03 : 0.08) * face.size;
+}
+
 }  // namespace mm::test

@@ -18,13 +18,13 @@ TEST(Meshing, RandomFacesMeshValidlyOrSayWhyNot) {
   for (int number = 0; meshed + errors < 300; ++number) {
     FaceModel face;
     try {
-      face = number % 3 == 2 ? test::random_notched_face(rng, number) : test::random_face(rng, number);
+      face = test::random_meshing_face(rng, number);
     } catch (const InputError&) {
       continue;
     }
     for (const int order : {1, 2}) {
       PipelineOptions options;
-      options.meshing.size = (number % 2 ? 0.03 : 0.08) * face.size;
+      options.meshing.size = test::random_meshing_size(face, number);
       options.meshing.order = order;
       MeshedFace m;
       try {
