@@ -243,17 +243,6 @@ void fill_one_sided(Filler& f, const Chain& loop, const std::vector<int>& p, con
   fill_two_sided(f, rest, n - u - v, std::vector<int>(p.begin() + 2, p.end()), "the two-sided rest of " + what);
 }
 
-double scaled_jacobian(const QuadMesh& mesh, const std::array<int, 4>& q) {
-  double worst = 1.0;
-  for (int k = 0; k < 4; ++k) {
-    const Vec2 p = mesh.nodes[q[k]];
-    const Vec2 e1 = mesh.nodes[q[(k + 1) % 4]] - p, e2 = mesh.nodes[q[(k + 3) % 4]] - p;
-    const double len = std::sqrt(dot(e1, e1) * dot(e2, e2));
-    worst = std::min(worst, len > 0.0 ? cross(e1, e2) / len : -1.0);
-  }
-  return worst;
-}
-
 // The template's placement stands when its worst element is at least this
 // good: the bar smoothing works up to (smoothing.cpp kGoodEnough). Below it
 // the harmonic layout is tried as well and the better one kept.
@@ -266,7 +255,7 @@ constexpr double kHarmonicTolerance = 1e-5;
 double worst_scaled_jacobian(const QuadMesh& mesh, std::size_t first_quad) {
   double worst = 1.0;
   for (std::size_t k = first_quad; k < mesh.quads.size(); ++k)
-    worst = std::min(worst, scaled_jacobian(mesh, mesh.quads[k]));
+    worst = std::min(worst, worst_corner_jacobian(mesh, mesh.quads[k]));
   return worst;
 }
 
@@ -447,7 +436,7 @@ void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
       Filler trial{scratch, f.block};
       const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, trial_a, trial_b);
       double worst = 1.0;
-      for (const auto& q : scratch.quads) worst = std::min(worst, scaled_jacobian(scratch, q));
+      for (const auto& q : scratch.quads) worst = std::min(worst, worst_corner_jacobian(scratch, q));
       const double score = worst + 0.5 * uniformity;
       if (score > best_score) best_score = score, best_start = start, best_depth = depth;
     }

@@ -181,18 +181,6 @@ double quad_area(const QuadMesh& mesh, const std::array<int, 4>& q) {
   return 0.5 * twice;
 }
 
-double worst_corner(const QuadMesh& mesh, const std::array<int, 4>& q) {
-  double worst = 1.0;
-  for (int i = 0; i < 4; ++i) {
-    const Vec2 p = mesh.nodes[q[i]];
-    const Vec2 next = mesh.nodes[q[(i + 1) % 4]] - p;
-    const Vec2 prev = mesh.nodes[q[(i + 3) % 4]] - p;
-    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
-    worst = std::min(worst, lengths > 0.0 ? cross(next, prev) / lengths : -1.0);
-  }
-  return worst;
-}
-
 std::string at(Vec2 p) {
   std::ostringstream s;
   s.precision(6);
@@ -760,7 +748,7 @@ class BlockMesher {
     double worst_value = 2.0;
     for (std::size_t e = 0; e < mesh_.quads.size(); ++e) {
       area += quad_area(mesh_, mesh_.quads[e]);
-      const double value = worst_corner(mesh_, mesh_.quads[e]);
+      const double value = worst_corner_jacobian(mesh_, mesh_.quads[e]);
       if (value < worst_value) {
         worst_value = value;
         worst = static_cast<int>(e);

@@ -2,7 +2,9 @@
 // The quad mesh every meshing stage hands on: plain arrays of nodes and
 // elements in the face's own 2-D coordinates, with what each boundary node
 // knows about the exact curve it lies on.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "geometry/vec2.hpp"
@@ -29,6 +31,20 @@ struct QuadMesh {
   std::vector<int> block_of_quad;           // the decomposition block each quad came from
   int order() const { return midside.empty() ? 1 : 2; }
 };
+
+// Scaled Jacobian of quad q at its worst corner, in [-1, 1]; a collapsed side
+// counts as -1. The meshing stages judge their own placements by it.
+inline double worst_corner_jacobian(const QuadMesh& mesh, const std::array<int, 4>& q) {
+  double worst = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec2 p = mesh.nodes[q[i]];
+    const Vec2 next = mesh.nodes[q[(i + 1) % 4]] - p;
+    const Vec2 prev = mesh.nodes[q[(i + 3) % 4]] - p;
+    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
+    worst = std::min(worst, lengths > 0.0 ? cross(next, prev) / lengths : -1.0);
+  }
+  return worst;
+}
 
 // Several faces' meshes as one mesh in 3-D (a single face's too): each
 // node once, the nodes along the pieces of boundary the faces share merged.
