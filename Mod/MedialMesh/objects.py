@@ -43,12 +43,55 @@ def add_face_properties(obj, type_name, group, source_doc):
     return add
 
 
-class MedialAnalysis:
-    """Proxy of a Part::FeaturePython analysing one face."""
+class MedialObject:
+    """What every MedialMesh proxy does: add its properties (missing ones
+    only, for documents from older versions), get its view provider back
+    after a restore, and compute in execute with no exception escaping.
+    Subclasses give VIEW_PROVIDER (a class name in viewproviders), compute
+    (fill the outputs and results) and clear_output (empty the outputs)."""
+
+    VIEW_PROVIDER = ""
 
     def __init__(self, obj):
         obj.Proxy = self
         self.add_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        self.add_properties(obj)
+        # A document saved without the GUI has no view provider proxy to restore.
+        if FreeCAD.GuiUp and obj.ViewObject and getattr(obj.ViewObject, "Proxy", None) is None:
+            attach_view_provider(obj)
+
+    def execute(self, obj):
+        # No exception may leave here: FreeCAD would show a traceback, not the problem.
+        try:
+            self.compute(obj)
+        except Exception as error:  # InputError, or anything unforeseen in a user's file
+            self.clear_output(obj)
+            clear_results(obj, report_failure(obj, error))
+            sketch = getattr(obj, "Sketch", None)
+            if sketch:  # no splits left over from an earlier face
+                sketch.deleteAllGeometry()
+                sketch.recompute()
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+def attach_view_provider(obj):
+    """Give obj's view object the workbench's view provider for its proxy."""
+    from . import viewproviders
+
+    getattr(viewproviders, obj.Proxy.VIEW_PROVIDER)(obj.ViewObject)
+
+
+class MedialAnalysis(MedialObject):
+    """Proxy of a Part::FeaturePython analysing one face."""
+
+    VIEW_PROVIDER = "ViewProviderMedialAnalysis"
 
     def add_properties(self, obj):
         add = add_face_properties(obj, TYPE, "Analysis", "The planar face analysed")
@@ -61,23 +104,10 @@ class MedialAnalysis:
             "Sum every quad mesh of the face must have: sum(2 - nc) - 4 (1 - holes)", read_only)
         add("App::PropertyString", "Status", "Results", "'ok', or why the face could not be analysed", read_only)
 
-    def onDocumentRestored(self, obj):
-        self.add_properties(obj)  # documents from older versions get the new properties
-        # A document saved without the GUI has no view provider proxy to restore.
-        if FreeCAD.GuiUp and obj.ViewObject and getattr(obj.ViewObject, "Proxy", None) is None:
-            from . import viewproviders
+    def clear_output(self, obj):
+        obj.Shape = Part.Shape()
 
-            viewproviders.ViewProviderMedialAnalysis(obj.ViewObject)
-
-    def execute(self, obj):
-        # No exception may leave here: FreeCAD would show a traceback, not the problem.
-        try:
-            self.analyse(obj)
-        except Exception as error:  # InputError, or anything unforeseen in a user's file
-            obj.Shape = Part.Shape()
-            clear_results(obj, report_failure(obj, error))
-
-    def analyse(self, obj):
+    def compute(self, obj):
         merge = obj.MergeFactor if obj.MergeFactor > 0 else None
         face = linked_face(obj)
         result = analysis.analyse_face(face, merge=merge, name=describe_source(obj))
@@ -89,19 +119,11 @@ class MedialAnalysis:
         obj.PredictedSumK = result.predicted_sum_k
         obj.Status = "ok"
 
-    def __getstate__(self):
-        return None
 
-    def __setstate__(self, state):
-        return None
-
-
-class MedialDecomposition:
+class MedialDecomposition(MedialObject):
     """Proxy of a Part::FeaturePython decomposing one face into blocks."""
 
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.add_properties(obj)
+    VIEW_PROVIDER = "ViewProviderMedialDecomposition"
 
     def add_properties(self, obj):
         add = add_face_properties(obj, DECOMPOSITION_TYPE, "Decomposition", "The planar face decomposed")
@@ -120,25 +142,10 @@ class MedialDecomposition:
             "What the decomposition had to do, such as fixing a singularity that no split could free", read_only)
         add("App::PropertyString", "Status", "Results", "'ok', or why the face could not be decomposed", read_only)
 
-    def onDocumentRestored(self, obj):
-        self.add_properties(obj)
-        if FreeCAD.GuiUp and obj.ViewObject and getattr(obj.ViewObject, "Proxy", None) is None:
-            from . import viewproviders
+    def clear_output(self, obj):
+        obj.Shape = Part.Shape()
 
-            viewproviders.ViewProviderMedialDecomposition(obj.ViewObject)
-
-    def execute(self, obj):
-        # No exception may leave here: FreeCAD would show a traceback, not the problem.
-        try:
-            self.decompose(obj)
-        except Exception as error:  # InputError, or anything unforeseen in a user's file
-            obj.Shape = Part.Shape()
-            clear_results(obj, report_failure(obj, error))
-            if obj.Sketch:  # no splits left over from an earlier face
-                obj.Sketch.deleteAllGeometry()
-                obj.Sketch.recompute()
-
-    def decompose(self, obj):
+    def compute(self, obj):
         merge = obj.MergeFactor if obj.MergeFactor > 0 else None
         face = linked_face(obj)
         result = decomposition.decompose_face(face, merge=merge, name=describe_source(obj))
@@ -152,12 +159,6 @@ class MedialDecomposition:
         obj.Status = "ok"
         if obj.Sketch:
             update_sketch(obj.Sketch, result.placement, result.splits)
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
 
 
 def update_sketch(sketch, placement, splits):
@@ -231,9 +232,7 @@ def make_analysis_object(doc, obj, subname, merge=0.75, name="MedialAnalysis"):
     analysis_obj.MergeFactor = merge
     analysis_obj.Label = f"{name}_{obj.Label}_{subname}"
     if FreeCAD.GuiUp:
-        from . import viewproviders
-
-        viewproviders.ViewProviderMedialAnalysis(analysis_obj.ViewObject)
+        attach_view_provider(analysis_obj)
     analysis_obj.recompute()
     return analysis_obj
 
@@ -251,9 +250,7 @@ def make_decomposition_object(doc, obj, subname, merge=0.75, name="MedialDecompo
     sketch.Label = f"{decomposition_obj.Label}_Sketch"
     decomposition_obj.Sketch = sketch
     if FreeCAD.GuiUp:
-        from . import viewproviders
-
-        viewproviders.ViewProviderMedialDecomposition(decomposition_obj.ViewObject)
+        attach_view_provider(decomposition_obj)
         sketch.ViewObject.Visibility = False  # the decomposition draws the same lines
     decomposition_obj.recompute()
     return decomposition_obj
@@ -262,15 +259,12 @@ def make_decomposition_object(doc, obj, subname, merge=0.75, name="MedialDecompo
 ELEMENT_ORDERS = ["1st", "2nd"]  # as FreeCAD's Gmsh mesh object names them
 
 
-class MedialQuadMesh:
+class MedialQuadMesh(MedialObject):
     """Proxy of a Fem::FemMeshObjectPython holding the quad mesh of its
     Source faces, with a Sketch of the decomposition's splits."""
 
     Type = QUAD_MESH_TYPE
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.add_properties(obj)
+    VIEW_PROVIDER = "ViewProviderMedialQuadMesh"
 
     def add_properties(self, obj):
         def add(kind, name, group, doc, mode=0):
@@ -310,23 +304,10 @@ class MedialQuadMesh:
         add("App::PropertyString", "Status", "Results", "'ok', or why the faces could not be meshed", read_only)
         add("App::PropertyStringList", "Notes", "Results", "What the mesher had to do, for the user", read_only)
 
-    def onDocumentRestored(self, obj):
-        self.add_properties(obj)
-        if FreeCAD.GuiUp and obj.ViewObject and getattr(obj.ViewObject, "Proxy", None) is None:
-            attach_quad_mesh_view_provider(obj)
+    def clear_output(self, obj):
+        obj.FemMesh = Fem.FemMesh()
 
-    def execute(self, obj):
-        # No exception may leave here: FreeCAD would show a traceback, not the problem.
-        try:
-            self.mesh(obj)
-        except Exception as error:  # InputError, or anything unforeseen in a user's file
-            obj.FemMesh = Fem.FemMesh()
-            clear_results(obj, report_failure(obj, error))
-            if obj.Sketch:  # no splits left over from earlier faces
-                obj.Sketch.deleteAllGeometry()
-                obj.Sketch.recompute()
-
-    def mesh(self, obj):
+    def compute(self, obj):
         faces, names = linked_faces(obj)
         if obj.Part != obj.Source[0][0]:
             obj.Part = obj.Source[0][0]
@@ -346,12 +327,6 @@ class MedialQuadMesh:
         if obj.Sketch:
             update_sketch(obj.Sketch, result.placement, result.splits)
 
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
 
 def linked_faces(obj):
     """The faces obj.Source (a LinkSubList) links, placed where they are seen
@@ -364,16 +339,6 @@ def linked_faces(obj):
     if not faces:
         raise InputError("no face linked in Source")
     return faces, names
-
-
-def attach_quad_mesh_view_provider(obj):
-    """Give the mesh object the workbench's view provider, when this build
-    has it (FreeCAD's own draws nothing without a proxy)."""
-    from . import viewproviders
-
-    view_provider = getattr(viewproviders, "ViewProviderMedialQuadMesh", None)
-    if view_provider is not None:
-        view_provider(obj.ViewObject)
 
 
 def _source_links(obj, subnames):
@@ -431,7 +396,7 @@ def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=
     if target is not None:
         target.addObject(mesh_obj)
     if FreeCAD.GuiUp:
-        attach_quad_mesh_view_provider(mesh_obj)
+        attach_view_provider(mesh_obj)
         sketch.ViewObject.Visibility = False  # the mesh shows the same lines
     mesh_obj.recompute()
     return mesh_obj
