@@ -311,9 +311,8 @@ class MedialQuadMesh(MedialObject):
         faces, names = linked_faces(obj)
         if obj.Part != obj.Source[0][0]:
             obj.Part = obj.Source[0][0]
-        order = ELEMENT_ORDERS.index(obj.ElementOrder) + 1
-        result = meshing.mesh_face(faces, size=obj.ElementSize.Value or None, order=order,
-                                   merge=obj.MergeFactor or None, smooth=obj.Smoothing, name=names)
+        result = meshing.mesh_face(faces, name=names, **mesh_arguments(obj.ElementSize.Value, obj.ElementOrder,
+                                                                       obj.MergeFactor, obj.Smoothing))
         obj.FemMesh = result.femmesh
         quality = result.quality
         obj.QuadCount = quality["quads"]
@@ -326,6 +325,12 @@ class MedialQuadMesh(MedialObject):
         obj.Status = "ok"
         if obj.Sketch:
             update_sketch(obj.Sketch, result.placement, result.splits)
+
+
+def mesh_arguments(size, order, merge, smooth):
+    """mesh_face's keyword arguments from the mesh object's property values
+    (size 0: automatic; order '1st' or '2nd'; merge 0: no merging)."""
+    return dict(size=size or None, order=ELEMENT_ORDERS.index(order) + 1, merge=merge or None, smooth=smooth)
 
 
 def linked_faces(obj):

@@ -29,7 +29,7 @@ import FreeCADGui
 from pivy import coin
 from PySide import QtCore, QtGui
 
-from . import analysis, decomposition, viewproviders
+from . import decomposition, objects, viewproviders
 
 PREVIEW_FACE_COLOUR = (0.82, 0.88, 1.0)
 PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
@@ -38,17 +38,6 @@ PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
 MAX_QUADS = 2_000_000
 SHOW_PROGRESS_AFTER = 1.0  # seconds: shorter runs just finish
 NO_MERGING = 0.2  # the merge factor field's minimum, which stands for 0: no merging
-
-
-def linked_faces(obj):
-    """The faces obj.Source links, placed where they are seen in 3-D, and a
-    name for them ('Plate.Face1,Plate.Face3') for messages."""
-    faces, names = [], []
-    for source, subnames in obj.Source:
-        for subname in subnames:
-            faces.append(analysis.global_face(source, subname))
-            names.append(f"{source.Label}.{subname}")
-    return faces, ",".join(names)
 
 
 def too_many_quads(faces, size, names):
@@ -165,10 +154,10 @@ class QuadMeshTaskPanel:
 
     def load_values(self):
         try:
-            _, names = linked_faces(self.obj)
+            names = ", ".join(objects.linked_faces(self.obj)[1])
         except Exception as error:  # shown; Preview and OK report it again
             names = f"({error})"
-        self.faces_label.setText(names.replace(",", ", "))
+        self.faces_label.setText(names)
         self.size.setProperty("rawValue", self.obj.ElementSize.Value)
         self.merge.setValue(self.obj.MergeFactor if self.obj.MergeFactor >= 0.25 else NO_MERGING)
         self.order.setCurrentIndex(max(0, self.order.findText(self.obj.ElementOrder)))
@@ -213,23 +202,21 @@ class QuadMeshTaskPanel:
         if self.busy():
             return
         try:
-            faces, names = linked_faces(self.obj)
-            if not faces:
-                raise ValueError("no face linked in Source")
+            faces, names = objects.linked_faces(self.obj)
         except Exception as error:
             self.report_error(str(error))
             return
         values = self.values()
-        size = values["ElementSize"]
-        too_many = too_many_quads(faces, size, names)
+        too_many = too_many_quads(faces, values["ElementSize"], ",".join(names))
         if too_many:
             self.report_error(too_many)
             return
         from .meshing import mesh_face
 
-        arguments = dict(size=size or None, order=2 if values["ElementOrder"] == "2nd" else 1,
-                         merge=values["MergeFactor"] or None, smooth=values["Smoothing"], name=names)
-        outcome = {"names": names}
+        arguments = objects.mesh_arguments(values["ElementSize"], values["ElementOrder"], values["MergeFactor"],
+                                           values["Smoothing"])
+        arguments["name"] = names
+        outcome = {"names": ",".join(names)}
 
         def work():
             try:
@@ -329,8 +316,8 @@ class QuadMeshTaskPanel:
 
     def accept(self):
         try:
-            faces, names = linked_faces(self.obj)
-            too_many = too_many_quads(faces, self.values()["ElementSize"], names)
+            faces, names = objects.linked_faces(self.obj)
+            too_many = too_many_quads(faces, self.values()["ElementSize"], ",".join(names))
         except Exception:  # no faces: the object's recompute says why
             too_many = None
         if too_many:  # the panel stays open for a larger size
