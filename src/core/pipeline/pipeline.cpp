@@ -8,29 +8,52 @@
 
 namespace mm {
 
-MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
-  const auto start = Clock::now();
-  MeshedFace result;
-  std::vector<std::pair<std::string, double>> stages;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using StageSeconds = std::vector<std::pair<std::string, double>>;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Adds to the stage of that name, appended when new: several faces' stages sum.
+void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
+  const auto found = std::find_if(stages.begin(), stages.end(), [&](const auto& s) { return s.first == name; });
+  if (found == stages.end()) {
+    stages.emplace_back(name, seconds);
+  } else {
+    found->second += seconds;
+  }
+}
+
+// Medial axis, mesh flow and decomposition of one face, each timed into stages.
+Decomposition decompose_face(const FaceModel& face, const PipelineOptions& options, StageSeconds& stages) {
   auto t = Clock::now();
   const MedialAxis axis = compute_medial_axis(face);
-  stages.emplace_back("medial_axis", seconds_since(t));
+  add_stage(stages, "medial_axis", seconds_since(t));
   t = Clock::now();
   const MeshFlow flow = compute_mesh_flow(face, axis);
-  stages.emplace_back("singularities", seconds_since(t));
+  add_stage(stages, "singularities", seconds_since(t));
   t = Clock::now();
   DecompositionOptions decomposition;
   decomposition.merge = options.merge;
   decomposition.tolerance = options.tolerance;
-  result.decomposition = decompose(face, axis, flow, decomposition);
-  stages.emplace_back("decomposition", seconds_since(t));
+  Decomposition result = decompose(face, axis, flow, decomposition);
+  add_stage(stages, "decomposition", seconds_since(t));
+  return result;
+}
+
+}  // namespace
+
+MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
+  const auto start = Clock::now();
+  MeshedFace result;
+  StageSeconds stages;
+  result.decomposition = decompose_face(face, options, stages);
   result.blocks = mesh_blocks(face, result.decomposition, options.meshing);
   stages.insert(stages.end(), result.blocks.stage_seconds.begin(), result.blocks.stage_seconds.end());
-  t = Clock::now();
+  const auto t = Clock::now();
   result.quality = measure_quality(result.blocks.mesh);
   stages.emplace_back("quality", seconds_since(t));
   result.quality.stage_seconds = stages;
@@ -39,32 +62,13 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
 }
 
 MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
   if (faces.empty()) throw InputError("no faces to mesh");
   const auto start = Clock::now();
   MeshedFaces result;
-  std::vector<std::pair<std::string, double>> stages{
-      {"medial_axis", 0.0}, {"singularities", 0.0}, {"decomposition", 0.0}};
+  StageSeconds stages;
   std::vector<Decomposition> decompositions;
-  DecompositionOptions decomposition;
-  decomposition.merge = options.merge;
-  decomposition.tolerance = options.tolerance;
-  for (const FaceModel& face : faces) {
-    auto t = Clock::now();
-    const MedialAxis axis = compute_medial_axis(face);
-    stages[0].second += seconds_since(t);
-    t = Clock::now();
-    const MeshFlow flow = compute_mesh_flow(face, axis);
-    stages[1].second += seconds_since(t);
-    t = Clock::now();
-    decompositions.push_back(decompose(face, axis, flow, decomposition));
-    stages[2].second += seconds_since(t);
-  }
+  for (const FaceModel& face : faces) decompositions.push_back(decompose_face(face, options, stages));
   FaceSetBlockMesh blocks = mesh_blocks_together(faces, decompositions, options.meshing);
-  std::vector<std::pair<std::string, double>> meshing;
   std::vector<const QuadMesh*> meshes;
   std::vector<QualityReport> reports;
   for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -73,14 +77,7 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     face.blocks = std::move(blocks.faces[f]);
     face.quality = measure_quality(face.blocks.mesh);
     face.quality.stage_seconds = face.blocks.stage_seconds;
-    for (const auto& [name, seconds] : face.blocks.stage_seconds) {
-      const auto found = std::find_if(meshing.begin(), meshing.end(), [&](const auto& s) { return s.first == name; });
-      if (found == meshing.end()) {
-        meshing.emplace_back(name, seconds);
-      } else {
-        found->second += seconds;
-      }
-    }
+    for (const auto& [name, seconds] : face.blocks.stage_seconds) add_stage(stages, name, seconds);
     result.faces.push_back(std::move(face));
   }
   for (const MeshedFace& face : result.faces) {
@@ -88,7 +85,6 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     reports.push_back(face.quality);
   }
   result.shared = std::move(blocks.shared);
-  stages.insert(stages.end(), meshing.begin(), meshing.end());
   auto t = Clock::now();
   result.mesh = merge_face_meshes(faces, meshes, result.shared, blocks.tolerance);
   stages.emplace_back("merge", seconds_since(t));
