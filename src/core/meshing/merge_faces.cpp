@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "meshing/union_find.hpp"
+
 namespace mm {
 namespace {
 
@@ -17,11 +19,6 @@ using Side = std::pair<int, int>;
 
 double distance3(const Point3& a, const Point3& b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-}
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
 }
 
 Side side(int a, int b) {

@@ -13,6 +13,7 @@
 #include "meshing/block_templates.hpp"
 #include "meshing/interval_assignment.hpp"
 #include "meshing/smoothing.hpp"
+#include "meshing/union_find.hpp"
 
 namespace mm {
 namespace {
@@ -117,11 +118,6 @@ std::vector<double> cumulative_length(const std::vector<Vec2>& line) {
   std::vector<double> arc(line.size(), 0.0);
   for (std::size_t i = 1; i < line.size(); ++i) arc[i] = arc[i - 1] + distance(line[i], line[i - 1]);
   return arc;
-}
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
 }
 
 // The parameter halfway along the curve between two parameters, by equal chords.
