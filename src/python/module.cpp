@@ -35,6 +35,21 @@ py::object face_dict(const mm::FaceModel& face) {
   return to_python(report);
 }
 
+// Elements as 0-based node indices: the 4 corners counter-clockwise, then
+// for order 2 the 4 mid-side nodes (side i from corner i to i + 1).
+py::array_t<int> element_array(const std::vector<std::array<int, 4>>& quads,
+                               const std::vector<std::array<int, 4>>& midside) {
+  const auto count = static_cast<py::ssize_t>(quads.size());
+  py::array_t<int> elements({count, static_cast<py::ssize_t>(midside.empty() ? 4 : 8)});
+  auto e = elements.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 4; ++c) e(i, c) = quads[i][c];
+    if (!midside.empty())
+      for (int c = 0; c < 4; ++c) e(i, 4 + c) = midside[i][c];
+  }
+  return elements;
+}
+
 // The mesh as numpy arrays: nodes in 3-D (the face's frame) and in the face's
 // plane, elements as 0-based node indices (4 corners, then 4 mid-side nodes).
 py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
@@ -50,18 +65,11 @@ py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
     n2(i, 0) = mesh.nodes[i].x;
     n2(i, 1) = mesh.nodes[i].y;
   }
-  const int per_element = mesh.order() == 2 ? 8 : 4;
+  const py::array_t<int> elements = element_array(mesh.quads, mesh.midside);
   const auto element_count = static_cast<py::ssize_t>(mesh.quads.size());
-  py::array_t<int> elements({element_count, static_cast<py::ssize_t>(per_element)});
   py::array_t<int> blocks(element_count);
-  auto e = elements.mutable_unchecked<2>();
   auto b = blocks.mutable_unchecked<1>();
-  for (py::ssize_t i = 0; i < element_count; ++i) {
-    for (int c = 0; c < 4; ++c) e(i, c) = mesh.quads[i][c];
-    if (per_element == 8)
-      for (int c = 0; c < 4; ++c) e(i, 4 + c) = mesh.midside[i][c];
-    b(i) = mesh.block_of_quad.empty() ? 0 : mesh.block_of_quad[i];
-  }
+  for (py::ssize_t i = 0; i < element_count; ++i) b(i) = mesh.block_of_quad.empty() ? 0 : mesh.block_of_quad[i];
   py::dict result;
   result["nodes"] = nodes;
   result["nodes_2d"] = plane;
@@ -85,18 +93,13 @@ py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::Mes
   auto n3 = nodes.mutable_unchecked<2>();
   for (py::ssize_t i = 0; i < node_count; ++i)
     for (int c = 0; c < 3; ++c) n3(i, c) = mesh.nodes[i][c];
-  const int per_element = mesh.order() == 2 ? 8 : 4;
+  const py::array_t<int> elements = element_array(mesh.quads, mesh.midside);
   const auto element_count = static_cast<py::ssize_t>(mesh.quads.size());
-  py::array_t<int> elements({element_count, static_cast<py::ssize_t>(per_element)});
   py::array_t<int> element_faces(element_count);
   py::array_t<int> blocks(element_count);
-  auto e = elements.mutable_unchecked<2>();
   auto f = element_faces.mutable_unchecked<1>();
   auto b = blocks.mutable_unchecked<1>();
   for (py::ssize_t i = 0; i < element_count; ++i) {
-    for (int c = 0; c < 4; ++c) e(i, c) = mesh.quads[i][c];
-    if (per_element == 8)
-      for (int c = 0; c < 4; ++c) e(i, 4 + c) = mesh.midside[i][c];
     f(i) = mesh.face_of_quad[i];
     b(i) = mesh.block_of_quad[i];
   }
