@@ -736,6 +736,7 @@ double radius_error(const NearestBoundary& boundary, const MedialAxis& axis) {
   return worst;
 }
 
+
 double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
   double worst = 0.0;
   const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(boundary.nearest(p).point, p)); };
