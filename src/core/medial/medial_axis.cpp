@@ -467,29 +467,49 @@ class Builder {
   // curvature lies there.
   std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
     if (touches.empty() || r <= 0) return std::nullopt;
-    BoundaryPlace foot = touches.front();
-    foot.corner_itself = false;
-    foot = nearest_on_run(index_, foot, p);
-    // Samples along the run, in order, from r behind the foot to r ahead.
+    std::optional<MedialVertex> best;
+    bool best_empty = false;
+    // Each touching place's run: beside a reflex corner the end's feet may
+    // lie on either side of it, and the peak on the other side's.
+    for (BoundaryPlace foot : touches) {
+      foot.corner_itself = false;
+      foot = nearest_on_run(index_, foot, p);
+      peaks_near(foot, p, r, best, best_empty);
+    }
+    return best;
+  }
+
+  // The curvature peaks within r of the foot along its run, as candidates for
+  // curvature_contact: best is the nearest to p whose disc is empty, else the
+  // nearest.
+  void peaks_near(const BoundaryPlace& foot, Vec2 p, double r, std::optional<MedialVertex>& best,
+                  bool& best_empty) const {
+    // Samples along the run, in order, from r behind the foot to r ahead;
+    // a run cut short by a corner ends at the corner.
     constexpr int kSamples = 64;
     const double ds = r / kSamples;
     std::vector<BoundaryPlace> behind{foot}, ahead{foot};
+    bool corner_behind = false, corner_ahead = false;
     for (int way : {-1, 1}) {
       auto& side = way < 0 ? behind : ahead;
       for (int k = 0; k < kSamples; ++k) {
         BoundaryPlace q = side.back();
-        if (!advance(q, way, ds)) break;
+        if (!advance(q, way, ds)) {
+          (way < 0 ? corner_behind : corner_ahead) = true;
+          break;
+        }
         side.push_back(q);
       }
     }
     std::vector<BoundaryPlace> run(behind.rbegin(), behind.rend());
     run.insert(run.end(), ahead.begin() + 1, ahead.end());
     const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
-    std::optional<MedialVertex> best;
-    bool best_empty = false;
-    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      // A peak of the run; at a run's end only where a corner cut it short
+      // (the curvature may rise all the way to a reflex corner).
+      if ((i == 0 && !corner_behind) || (i + 1 == run.size() && !corner_ahead)) continue;
       const double k = kappa(run[i]);
-      if (k <= 0 || k < kappa(run[i - 1]) || k < kappa(run[i + 1])) continue;
+      if (k <= 0 || (i > 0 && k < kappa(run[i - 1])) || (i + 1 < run.size() && k < kappa(run[i + 1]))) continue;
       // Golden-section refinement within a sample step either side, on the
       // sample's edge (a closed curve's seam may lie between the samples).
       const BoundaryPlace& at_sample = run[i];
@@ -509,7 +529,10 @@ class Builder {
       }
       const double t = 0.5 * (a + b);
       const BoundaryPlace at = index_.place(at_sample.loop, at_sample.edge, t);
-      if (at.corner >= 0) continue;  // the peak is at a corner: no curvature contact here
+      // A peak at a convex corner is the corner's flare, no contact. At a
+      // reflex corner the disc touching the corner with the curvature of
+      // this side there is the end (the other side turns away from it).
+      if (at.corner >= 0 && !index_.is_reflex(at.loop, at.corner)) continue;
       MedialVertex v;
       v.kind = MedialVertexKind::CurvatureContact;
       v.r = 1.0 / curvature(edge, t);
@@ -521,7 +544,6 @@ class Builder {
       if (!best || empty > best_empty || (empty == best_empty && distance(v.p, p) < distance(best->p, p)))
         best = v, best_empty = empty;
     }
-    return best;
   }
 
   // The medial point on the bisector of an edge's two sites nearest to m.
@@ -735,7 +757,6 @@ double radius_error(const NearestBoundary& boundary, const MedialAxis& axis) {
   }
   return worst;
 }
-
 
 double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
   double worst = 0.0;
