@@ -14,32 +14,17 @@ double hi(const BoundaryEdge& e) {
   return std::max(e.t_start, e.t_end);
 }
 
-// Nearest parameter of a single edge to m, from the guess t.
-double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
+// The first zero of g(t) = (C(t) - m) . C'(t) downhill from t, by safeguarded
+// Newton. Plain Newton does not always settle: with m near a centre of
+// curvature (a medial point near a curvature contact, on a long gently
+// curved B-spline) the distance is nearly flat, g' = |C'|^2 + (C - m) . C''
+// nearly 0, and its steps jump to and fro across the minimum. So first walk
+// downhill until g changes sign (steps growing from the Newton step, none
+// longer than a quarter of the distance to m along the curve, so no dip of
+// the boundary is stepped over), then Newton steps within that bracket,
+// bisecting whenever one leaves it.
+double bracketed_nearest(const BoundaryEdge& edge, double t, Vec2 m) {
   const double a = lo(edge), b = hi(edge);
-  if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
-    return std::clamp(dot(m - line->origin, line->direction), a, b);
-  }
-  if (const auto* circle = std::get_if<CircleCurve>(&edge.curve)) {
-    // Go from t towards the circle's nearest point by the shorter way round,
-    // stopping at an end of the arc if one comes first: a local search, like
-    // Newton's below, so that each end of an arc keeps its own side.
-    const Vec2 d = m - circle->center;
-    if (norm(d) < 1e-300) return std::clamp(t, a, b);
-    const double u = circle->sense * (std::atan2(d.y, d.x) - circle->start_angle);
-    const double turn = std::remainder(u - t, 2 * kPi);
-    return std::clamp(std::clamp(t, a, b) + turn, a, b);
-  }
-  // General curve: the first zero of g(t) = (C(t) - m) . C'(t) downhill from
-  // t, by safeguarded Newton. Plain Newton is not enough: where m is near a
-  // centre of curvature (a medial point near a curvature contact, on a long
-  // gently curved B-spline) the distance is nearly flat, g' = |C'|^2 + (C -
-  // m) . C'' nearly 0, and its steps jump to and fro across the minimum
-  // without settling. So first walk downhill until g changes sign (steps
-  // growing from the Newton step, none longer than a quarter of the distance
-  // to m along the curve, so no dip of the boundary is stepped over), then
-  // Newton steps within that bracket, bisecting whenever one leaves it.
-  t = std::clamp(t, a, b);
   const auto g_of = [&](double u, double* slope) {
     const CurvePoint c = evaluate(edge.curve, u);
     if (slope) *slope = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
@@ -56,9 +41,11 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
   bool bracketed = g == 0.0;
   double step = slope > 0 ? std::abs(g / slope) * 1.5 : 0.0;
   for (int i = 0; i < 200 && !bracketed; ++i) {
-    step = std::min(std::max(step, 1e-12 * (b - a)), longest_step(behind));
+    // No step below what a parameter far from 0 can resolve.
+    const double least = std::max(1e-12 * (b - a), 8 * std::numeric_limits<double>::epsilon() * std::abs(behind));
+    step = std::max(std::min(step, longest_step(behind)), least);
     ahead = std::clamp(behind + way * step, a, b);
-    if (ahead == behind) break;  // at an end, still going down: the end is nearest
+    if (ahead == behind) return behind;  // at an end, still going down: the end is nearest
     if (g_of(ahead, nullptr) * way >= 0.0) {
       bracketed = true;
     } else {
@@ -66,24 +53,59 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
       step *= 2;
     }
   }
-  if (!bracketed) {
-    t = behind;
-  } else if (ahead != behind) {
-    double lo = std::min(behind, ahead), hi = std::max(behind, ahead);  // g(lo) < 0 <= g(hi)
-    t = 0.5 * (lo + hi);
-    for (int i = 0; i < 100 && hi - lo > 1e-15 * (b - a); ++i) {
-      g = g_of(t, &slope);
-      if (g == 0.0) break;
-      (g < 0 ? lo : hi) = t;
-      const double newton = slope > 0 ? t - g / slope : lo - 1.0;
-      const double next = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
-      if (std::abs(next - t) <= 1e-15 * (b - a)) {
-        t = next;
-        break;
-      }
-      t = next;
-    }
+  if (!bracketed || ahead == behind) return behind;
+  double low = std::min(behind, ahead), high = std::max(behind, ahead);  // g(low) < 0 <= g(high)
+  t = 0.5 * (low + high);
+  for (int i = 0; i < 100 && high - low > 1e-15 * (b - a); ++i) {
+    g = g_of(t, &slope);
+    if (g == 0.0) break;
+    (g < 0 ? low : high) = t;
+    const double newton = slope > 0 ? t - g / slope : low - 1.0;
+    const double next = newton > low && newton < high ? newton : 0.5 * (low + high);
+    if (next == t) break;
+    t = next;
   }
+  return t;
+}
+
+// Nearest parameter of a single edge to m, from the guess t.
+double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
+  const double a = lo(edge), b = hi(edge);
+  if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
+    return std::clamp(dot(m - line->origin, line->direction), a, b);
+  }
+  if (const auto* circle = std::get_if<CircleCurve>(&edge.curve)) {
+    // Go from t towards the circle's nearest point by the shorter way round,
+    // stopping at an end of the arc if one comes first: a local search, like
+    // Newton's below, so that each end of an arc keeps its own side.
+    const Vec2 d = m - circle->center;
+    if (norm(d) < 1e-300) return std::clamp(t, a, b);
+    const double u = circle->sense * (std::atan2(d.y, d.x) - circle->start_angle);
+    const double turn = std::remainder(u - t, 2 * kPi);
+    return std::clamp(std::clamp(t, a, b) + turn, a, b);
+  }
+  // General curve: Newton's method on g(t) = (C(t) - m) . C'(t) = 0, kept in range.
+  t = std::clamp(t, a, b);
+  bool settled = false;
+  for (int i = 0; i < 50 && !settled; ++i) {
+    const CurvePoint c = evaluate(edge.curve, t);
+    const double g = dot(c.p - m, c.d1);
+    const double h = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
+    double next = h > 0 ? t - g / h : t - g / std::max(dot(c.d1, c.d1), 1e-300);
+    next = std::clamp(next, a, b);
+    // A step must not lead further away: where the distance is flat (m near
+    // a centre of curvature) or the curve bends back, a full Newton step can
+    // jump to another part of the curve; shorten it until it goes downhill.
+    const double here = dot(c.p - m, c.p - m);
+    for (int k = 0; k < 60; ++k) {
+      const Vec2 q = evaluate(edge.curve, next).p;
+      if (dot(q - m, q - m) <= here) break;
+      next = t + 0.5 * (next - t);
+    }
+    settled = std::abs(next - t) <= 1e-15 * (b - a);
+    t = next;
+  }
+  if (!settled) t = bracketed_nearest(edge, t, m);
   // Newton may settle on an end where the other end is nearer.
   const double dt = distance(evaluate(edge.curve, t).p, m);
   if (distance(evaluate(edge.curve, a).p, m) < dt) t = a;
