@@ -108,7 +108,10 @@ TopoDS_Wire section_wire(const AerofoilSection& s, double scale) {
   const double t = std::stoi(s.digits.substr(s.digits.size() - 2)) / 100.0;
   std::vector<P2> upper, lower;  // from the leading edge to the trailing edge
   for (int i = 0; i < kPerSide; ++i) {
-    const double x = 0.5 * (1 - std::cos(kPi * i / (kPerSide - 1)));  // clustered at both edges
+    // Clustered at the leading edge only: points crowded at a sharp
+    // trailing edge, where the surfaces meet at a few degrees, make the
+    // interpolating B-spline overshoot and cross itself there.
+    const double x = 1 - std::cos(0.5 * kPi * i / (kPerSide - 1));
     const Camber c = naca_camber(s.digits, x);
     const double h = naca_thickness(t, x, !s.blunt), theta = std::atan(c.slope);
     upper.push_back({x - h * std::sin(theta), c.y + h * std::cos(theta)});
@@ -211,7 +214,7 @@ TopoDS_Face cascade_face(const Cascade& c, double scale) {
   const double x_end = c.rounded ? 1.0 - c.te_radius : 1.0;  // the trailing edge arc's centre
   std::vector<P2> upper, lower;
   for (int i = 0; i < kPerSide; ++i) {
-    const double s = 0.5 * (1 - std::cos(kPi * i / (kPerSide - 1))), x = s * x_end;
+    const double s = 1 - std::cos(0.5 * kPi * i / (kPerSide - 1)), x = s * x_end;  // as for the sections
     const double slope = camber_slope(x), h = blade_thickness(c, s);
     if (i > 0 && i + 1 < kPerSide && !(h > 0))
       throw std::invalid_argument("the blade's thickness vanishes before its trailing edge");
