@@ -504,9 +504,9 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
   const Model::Outcome outcome = built.model.solve();
   if (outcome.infeasible) {
     const size_t b = first_impossible_block(problem);
-    throw std::runtime_error(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
-                             " sides): its template's conditions cannot hold together with those of the blocks "
-                             "before it, whatever the goals");
+    throw IntervalsInfeasible(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
+                              " sides): its template's conditions cannot hold together with those of the blocks "
+                              "before it, whatever the goals");
   }
   IntervalAssignment answer = read_answer(built, outcome.values);
   if (!outcome.proven_optimal)
