@@ -889,10 +889,7 @@ class Decomposer {
       Cut c;
       c.edge = loc.edge;
       c.s = loc.s;
-      c.point.p = flow_.singularities[m].p;
-      c.point.r = flow_.singularities[m].r;
-      c.point.left = nearest_on_run(index_, pts[i].left, c.point.p);
-      c.point.right = nearest_on_run(index_, pts[i].right, c.point.p);
+      c.point = fix_point(loc.edge, i, flow_.singularities[m].p, flow_.singularities[m].r);
       c.behind = flow_.points[loc.edge][i];
       c.ahead = flow_.points[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
@@ -900,6 +897,19 @@ class Decomposer {
       ++version_;
       ++version_;
     }
+  }
+
+  // The split through a singularity at p between points i and i + 1 of
+  // edge e: its radii go to the two places nearest p on the runs the points
+  // there touch. Where the touches move fast along the segment (the
+  // boundary curving towards the axis) both searches can end at one place
+  // (p lies a little off the exact axis) and the split would be no cut at
+  // all: the nearer of the two medial points is taken then, with its touches.
+  MedialPoint fix_point(int e, int i, Vec2 p, double r) const {
+    const auto& pts = axis_.edges[e].points;
+    const MedialPoint point{p, r, nearest_on_run(index_, pts[i].left, p), nearest_on_run(index_, pts[i].right, p)};
+    if (distance(point.left.point, point.right.point) > tol_) return point;
+    return distance(pts[i].p, p) <= distance(pts[i + 1].p, p) ? pts[i] : pts[i + 1];
   }
 
   // ------------------------------------------------------------ exploring
