@@ -16,7 +16,11 @@
 // split went out to one boundary point and back (a block of no area that no
 // typing submaps). plate_1_1391: a notched plate a thousandth of a unit
 // across, a split end on a slot's round end that both of OCC's classifiers
-// call outside the face although it is on its edge.
+// call outside the face although it is on its edge. bspline_1_1272: three
+// k = -1 round two junctions a hair apart, where the flow's corner types do
+// not close up in every attempt, with or without every singularity fixed;
+// the last attempt, typing blocks by their angles, now fixes every
+// singularity too when a floating one's block does not close up.
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -51,7 +55,7 @@ double area_of(const TopoDS_Face& face) {
 
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name : {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_777",
-                           "bspline_1_2", "bspline_1_1262", "plate_1_1391"}) {
+                           "bspline_1_2", "bspline_1_1262", "plate_1_1391", "bspline_1_1272"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
@@ -71,7 +75,12 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
 // face's, every check a user would make holds, and OCC cuts the face along
 // the splits into valid faces whose areas add up to the face's.
 TEST(FuzzFaces, DecompositionsTileTheFace) {
-  for (const char* name : {"bspline_1_777", "bspline_1_2", "bspline_1_1262", "plate_1_1391"}) {
+  // With whether the decomposition must say it fell back.
+  for (const auto& [name, fallback] : std::vector<std::pair<std::string, bool>>{{"bspline_1_777", false},
+                                                                                {"bspline_1_2", false},
+                                                                                {"bspline_1_1262", false},
+                                                                                {"plate_1_1391", false},
+                                                                                {"bspline_1_1272", true}}) {
     const std::string text = fuzz_face_text(name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);
@@ -85,7 +94,8 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
     }
     const auto problems = test::decomposition_problems(face, flow, d);
     EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
-    EXPECT_FALSE(d.fallback) << name;
+    EXPECT_EQ(d.fallback, fallback) << name;
+    if (d.fallback) EXPECT_FALSE(d.notes.empty()) << name << ": a fallback must say why";
     double area = 0.0;
     for (const Block& b : d.blocks) area += b.area;
     EXPECT_NEAR(area, face.area, 1e-9 * face.area) << name;

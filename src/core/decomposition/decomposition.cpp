@@ -406,14 +406,18 @@ class Decomposer {
     }
     // Last: blocks whose flow numbers do not close up (the flow's local
     // bookkeeping) are typed by their angles instead, if they hold no
-    // floating singularity.
+    // floating singularity; with every singularity that can be fixed fixed
+    // if that does not do (a floating one whose block does not close up).
     lenient_ = true;
     strict_end_touches_ = false;
-    try {
-      Decomposition d = attempt(false);
-      d.notes.push_back("every attempt failed a self-check (" + first + ")");
-      return d;
-    } catch (const SelfCheckFailure&) {
+    for (const bool fix_all : {false, true}) {
+      try {
+        Decomposition d = attempt(fix_all);
+        d.fallback = d.fallback || fix_all;
+        d.notes.push_back("every attempt failed a self-check (" + first + ")");
+        return d;
+      } catch (const SelfCheckFailure&) {
+      }
     }
     throw SelfCheckError(face_.name, first);
   }
