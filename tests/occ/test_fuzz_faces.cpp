@@ -21,6 +21,12 @@
 // not close up in every attempt, with or without every singularity fixed;
 // the last attempt, typing blocks by their angles, now fixes every
 // singularity too when a floating one's block does not close up.
+// filleted_4_1700: a switch a thousandth of a step from a fixed junction,
+// cut there on its own (a sliver block whose outline crossed itself; now
+// the junction's cut takes it). bspline_2_792: an axis missing the branch
+// into one lobe, whose k = -1 went into a triangle on the far side of the
+// face while the areas still added up (now a self-check failure, and the
+// fix-everything fallback decomposes it).
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -54,8 +60,9 @@ double area_of(const TopoDS_Face& face) {
 }
 
 TEST(FuzzFaces, EachGetsAValidMesh) {
-  for (const char* name : {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_777",
-                           "bspline_1_2", "bspline_1_1262", "plate_1_1391", "bspline_1_1272"}) {
+  for (const char* name :
+       {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_777", "bspline_1_2", "bspline_1_1262",
+        "plate_1_1391", "bspline_1_1272", "filleted_4_1700", "bspline_2_792"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
@@ -80,7 +87,9 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
                                                                                 {"bspline_1_2", false},
                                                                                 {"bspline_1_1262", false},
                                                                                 {"plate_1_1391", false},
-                                                                                {"bspline_1_1272", true}}) {
+                                                                                {"bspline_1_1272", true},
+                                                                                {"filleted_4_1700", false},
+                                                                                {"bspline_2_792", true}}) {
     const std::string text = fuzz_face_text(name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);

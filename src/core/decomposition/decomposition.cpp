@@ -482,6 +482,7 @@ class Decomposer {
   // The vertex an edge starts (at_start) or ends at, coincident junctions as one.
   int end_vertex(int e, bool at_start) const { return rep_[at_start ? axis_.edges[e].from : axis_.edges[e].to]; }
 
+  static constexpr double kAtEnd = 1e-2;  // of the last polyline step
   void locate_singularities() {
     for (const Singularity& s : flow_.singularities) {
       Location loc;
@@ -492,6 +493,18 @@ class Decomposer {
       } else {
         loc.edge = s.edge;
         loc.s = project(s.edge, s.p);
+        // A switch at the very end of an edge that ends at a junction is at
+        // the junction: cut there, not a hair's breadth away.
+        const double last = point_count(s.edge) - 1.0;
+        for (const bool at_start : {true, false}) {
+          const int v = at_start ? axis_.edges[s.edge].from : axis_.edges[s.edge].to;
+          const double gap = at_start ? loc.s : last - loc.s;
+          if (v >= 0 && gap < kAtEnd && axis_.vertices[v].kind == MedialVertexKind::Junction) {
+            loc = Location{};
+            loc.vertex = rep_[v];
+            break;
+          }
+        }
       }
       locations_.push_back(loc);
     }
@@ -1915,10 +1928,13 @@ class Decomposer {
     return it == corner_of_.end() ? 2 : face_.corners[it->second].nc;
   }
 
+  // How far the sampled outlines handed out may stray from the curved sides.
+  double chord_tolerance() const { return 1e-4 * face_.size; }
+
   // Parameters of the points drawn along a boundary edge, computed once.
   const std::vector<double>& edge_samples(int loop, int edge) const {
     auto& cached = samples_[{loop, edge}];
-    if (cached.empty()) cached = sample_edge_parameters(face_.loops[loop].edges[edge], 1e-4 * face_.size);
+    if (cached.empty()) cached = sample_edge_parameters(face_.loops[loop].edges[edge], chord_tolerance());
     return cached;
   }
 
@@ -2070,6 +2086,10 @@ class Decomposer {
           std::all_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 1; });
       if (it != unit_in.end()) {
         b.singularity = it->second;
+        for (int m : d.singularities[it->second].members) {
+          if (!holds(b.outline, flow_.singularities[m].p))
+            throw SelfCheckFailure("decomposition: a block's singularity lies outside its outline");
+        }
         b.kind = convex && simple(o) && b.corners.size() <= 6 ? BlockKind::Polygon : BlockKind::Submap;
         if (b.kind == BlockKind::Submap) {
           d.fallback = true;
@@ -2092,6 +2112,22 @@ class Decomposer {
       throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // Whether p lies inside a closed outline or on it. Where the medial axis
+  // misses a branch, a piece of axis can sweep a region apart from the one
+  // its outline walks round: the areas still add up, but a singularity on
+  // that piece would be put in the wrong block.
+  bool holds(const std::vector<Vec2>& outline, Vec2 p) const {
+    bool in = false;
+    double nearest = 1e300;
+    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+      const Vec2 a = outline[i], b = outline[j], d = b - a;
+      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * d.x / d.y) in = !in;
+      const double f = dot(d, d) > 0 ? std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, distance(a + f * d, p));
+    }
+    return in || nearest <= chord_tolerance();
   }
 
   // Whether two split pieces of a block's outline cross (two splits ending
