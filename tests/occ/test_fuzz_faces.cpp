@@ -66,10 +66,9 @@ double area_of(const TopoDS_Face& face) {
 }
 
 TEST(FuzzFaces, EachGetsAValidMesh) {
-  for (const char* name :
-       {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_37", "elliptic_2_1614",
-        "bspline_2_1947", "bspline_5_357", "bspline_1_777", "bspline_1_2", "bspline_1_1262", "plate_1_1391",
-        "bspline_1_1272", "filleted_4_1700", "bspline_2_792"}) {
+  for (const char* name : {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_37",
+                           "elliptic_2_1614", "bspline_2_1947", "bspline_5_357", "bspline_1_777", "bspline_1_2",
+                           "bspline_1_1262", "plate_1_1391", "bspline_1_1272", "filleted_4_1700", "bspline_2_792"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
