@@ -33,6 +33,13 @@
 // into one lobe, whose k = -1 went into a triangle on the far side of the
 // face while the areas still added up (now a self-check failure, and the
 // fix-everything fallback decomposes it).
+// aerofoil_3_201 and aerofoil_3_288: aerofoils whose meshes were right but
+// whose area checks (the mesher's and the tests') bounded what the chords
+// cut off by chord x midpoint sagitta, 8x short across a leading edge; now
+// the exact area between each chord and its curve. plate_3_686 and
+// plate_5_1206: submapped blocks with two reflex corners nearly in line,
+// whose counts made the logical outline cross itself (sides facing only
+// past the corners, now seen from rays at the reflex corners).
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -68,7 +75,8 @@ double area_of(const TopoDS_Face& face) {
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name : {"strip_7_63", "strip_7_313", "bspline_8_117", "elliptic_9_99", "bspline_1_37",
                            "elliptic_2_1614", "bspline_2_1947", "bspline_5_357", "bspline_1_777", "bspline_1_2",
-                           "bspline_1_1262", "plate_1_1391", "bspline_1_1272", "filleted_4_1700", "bspline_2_792"}) {
+                           "bspline_1_1262", "plate_1_1391", "bspline_1_1272", "filleted_4_1700", "bspline_2_792",
+                           "aerofoil_3_201", "aerofoil_3_288", "plate_3_686", "plate_5_1206"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
