@@ -268,16 +268,19 @@ class BlockMesher {
     BlockMesh result;
     const auto t2 = std::chrono::steady_clock::now();
     if (options_.smooth) {
-      // Boundary nodes stay where their spacing put them: sliding them for
-      // the elements' sake let single intervals span too much of a small
-      // hole (the chordal error grew past what interval assignment bounded).
+      // Boundary nodes slide along their curves (nodes facing each other
+      // across a thin gap line up), but no interval comes to turn by more
+      // than interval assignment allowed: sliding freely let single
+      // intervals span too much of a small hole.
       SmoothingOptions smoothing;
-      smoothing.move_boundary = false;
+      smoothing.max_boundary_turn = kMaxTurnPerInterval;
+      // A piece of boundary shared with another face keeps the nodes both have.
+      for (const Segment& s : segments_)
+        if (s.shared) smoothing.fixed.insert(smoothing.fixed.end(), s.nodes.begin(), s.nodes.end());
       // Unless an element stays folded: then boundary nodes must give way
-      // (a block's few intervals on a hole bunched where its sides meet);
-      // the area check below still bounds the chordal error.
+      // (a block's few intervals on a hole bunched where its sides meet).
       if (smooth_mesh(face_, mesh_, smoothing).inverted_after > 0) {
-        smoothing.move_boundary = true;
+        smoothing.max_boundary_turn = 0.0;
         smooth_mesh(face_, mesh_, smoothing);
       }
     }
