@@ -101,8 +101,12 @@ double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& en
     const double here = dot(c.p - m, c.p - m);
     Vec2 q = evaluate_point(edge.curve, next);
     for (int k = 0; k < 60 && dot(q - m, q - m) > here; ++k) {
-      next = t + 0.5 * (next - t);
-      q = evaluate_point(edge.curve, next);
+      // Halving a step of one unit in the last place can round back to the
+      // same parameter: then every further try is this same point again.
+      const double shorter = t + 0.5 * (next - t);
+      if (shorter == next) break;
+      next = shorter;
+      q = next == t ? c.p : evaluate_point(edge.curve, next);
     }
     settled = std::abs(next - t) <= 1e-15 * (b - a);
     if (next != t) c = evaluate(edge.curve, next);
