@@ -1,7 +1,9 @@
 #include "medial/medial_axis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -76,8 +78,22 @@ class Builder {
 
   double size() const { return face_.size; }
 
-  // The exact boundary place a site stands for, nearest to m.
+  // The exact boundary place a site stands for, nearest to m. Asked again
+  // and again for one site and point (a node's sites once per edge there
+  // and once more for its medial point, a junction's once per nearby
+  // Voronoi vertex): the last few answers are kept.
   BoundaryPlace place_of(const Site& site, Vec2 m) const {
+    for (const PlaceMemo& memo : place_memo_) {
+      if (memo.segment == site.segment && memo.part == site.part && std::memcmp(&memo.m, &m, sizeof m) == 0)
+        return memo.place;
+    }
+    const BoundaryPlace place = search_place_of(site, m);
+    place_memo_[place_memo_next_] = {site.segment, site.part, m, place};
+    place_memo_next_ = (place_memo_next_ + 1) % place_memo_.size();
+    return place;
+  }
+
+  BoundaryPlace search_place_of(const Site& site, Vec2 m) const {
     const BoundarySegment& s = graph_.segments[site.segment];
     double t = s.t0;
     if (site.part == Site::kEnd) {
@@ -790,7 +806,16 @@ class Builder {
     }
   }
 
+  struct PlaceMemo {
+    int segment = -1;  // none yet
+    Site::Part part = Site::kSegment;
+    Vec2 m;
+    BoundaryPlace place;
+  };
+
   const FaceModel& face_;
+  mutable std::array<PlaceMemo, 8> place_memo_;
+  mutable std::size_t place_memo_next_ = 0;
   BoundaryIndex index_;
   double chord_tolerance_;
   VoronoiGraph graph_;
