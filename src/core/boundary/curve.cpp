@@ -90,7 +90,7 @@ void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32
 CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
   if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
   const int span = find_span(c, t);
-  double ders[3][32] = {};
+  double ders[3][32];  // basis_derivatives fills [0..2][0..degree], all that is read
   basis_derivatives(c, span, t, ders);
   const bool rational = !c.weights.empty();
   // Homogeneous sums: A = sum N w P, W = sum N w, for value and derivatives.

@@ -131,7 +131,7 @@ BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
   for (const Loop& loop : face.loops) {
     curve_ends_.emplace_back();
     for (const BoundaryEdge& e : loop.edges)
-      curve_ends_.back().push_back({evaluate(e.curve, lo(e)).p, evaluate(e.curve, hi(e)).p});
+      curve_ends_.back().push_back({evaluate_point(e.curve, lo(e)), evaluate_point(e.curve, hi(e))});
   }
   for (const Corner& c : face.corners) {
     corner_[c.loop][c.vertex] = true;
@@ -141,7 +141,7 @@ BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
 
 BoundaryPlace BoundaryIndex::place(int loop, int e, double t) const {
   const BoundaryEdge& edge = face_.loops[loop].edges[e];
-  BoundaryPlace p{loop, e, t, -1, evaluate(edge.curve, t).p};
+  BoundaryPlace p{loop, e, t, -1, evaluate_point(edge.curve, t)};
   // At a corner the place is the snapped vertex (neighbouring curves may end
   // a file's tolerance apart); elsewhere it is the curve's own point.
   const double tol = 1e-12 * std::max(1.0, std::abs(edge.t_end - edge.t_start));
