@@ -100,7 +100,7 @@ double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& en
     // jump to another part of the curve; shorten it until it goes downhill.
     const double here = dot(c.p - m, c.p - m);
     Vec2 q = evaluate_point(edge.curve, next);
-    for (int k = 0; k < 60 && dot(q - m, q - m) > here; ++k) {
+    for (int k = 0; k < 60 && !(dot(q - m, q - m) <= here); ++k) {  // NaN halves on too
       // Halving a step of one unit in the last place can round back to the
       // same parameter: then every further try is this same point again.
       const double shorter = t + 0.5 * (next - t);
