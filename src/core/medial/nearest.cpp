@@ -88,7 +88,7 @@ double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& en
   }
   // General curve: Newton's method on g(t) = (C(t) - m) . C'(t) = 0, kept in range.
   t = std::clamp(t, a, b);
-  CurvePoint c = evaluate(edge.curve, t);  // always the curve at t
+  CurvePoint c = evaluate(edge.curve, t);  // the curve at t (once settled, its point only)
   bool settled = false;
   for (int i = 0; i < 50 && !settled; ++i) {
     const double g = dot(c.p - m, c.d1);
@@ -109,7 +109,11 @@ double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& en
       q = next == t ? c.p : evaluate_point(edge.curve, next);
     }
     settled = std::abs(next - t) <= 1e-15 * (b - a);
-    if (next != t) c = evaluate(edge.curve, next);
+    if (settled) {
+      c.p = q;  // past the search only the point is wanted, and q is it
+    } else if (next != t) {
+      c = evaluate(edge.curve, next);
+    }
     t = next;
   }
   if (!settled) {
