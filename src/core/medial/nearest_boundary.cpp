@@ -82,11 +82,27 @@ struct NearestBoundary::Samples {
     }
     return count;
   }
+
+  // Calls f(sample index, distance) for every sample within radius of p.
+  template <class F>
+  void within(Vec2 p, double radius, F f) const {
+    const auto [x0, y0] = cell_of(p - Vec2{radius, radius});
+    const auto [x1, y1] = cell_of(p + Vec2{radius, radius});
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const int c = y * nx + x;
+        for (int j = first[c]; j < first[c + 1]; ++j) {
+          const double d = distance(places[order[j]].point, p);
+          if (d <= radius) f(order[j], d);
+        }
+      }
+    }
+  }
 };
 
 NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), samples_(new Samples) {
   const FaceModel& face = index.face();
-  const double spacing = 1e-2 * face.size;
+  const double spacing = spacing_ = 1e-2 * face.size;
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
@@ -119,18 +135,25 @@ BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   BoundaryPlace best;
   double best_distance = 1e300;
   std::vector<BoundaryPlace> refined;
-  for (int i = 0; i < count; ++i) {
-    const BoundaryPlace& place = samples_->places[found[i].second];
-    const double d = found[i].first;
+  const auto refine = [&](int sample, double d) {
+    const BoundaryPlace& place = samples_->places[sample];
     if (d < best_distance) best = place, best_distance = d;
     const auto near = [&](const BoundaryPlace& r) {
       return r.loop == place.loop && r.edge == place.edge && distance(r.point, place.point) <= same_stretch;
     };
-    if (std::any_of(refined.begin(), refined.end(), near)) continue;
+    if (std::any_of(refined.begin(), refined.end(), near)) return;
     refined.push_back(place);
     const BoundaryPlace exact = nearest_on_run(index_, place, p);
     if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
-  }
+  };
+  for (int i = 0; i < count; ++i) refine(found[i].second, found[i].first);
+  // The nearest point of a stretch lies within half a sample spacing (and
+  // the curves' sag from the samples' chords) of one of its samples, which
+  // may be farther than all of the six nearest samples when another stretch
+  // is almost as near (a hole's edge a hair farther than the outline):
+  // every stretch with a sample that close to the best distance is refined.
+  samples_->within(p, best_distance + 0.5 * spacing_ + 1e-3 * index_.face().size,
+                   [&](int sample, double d) { refine(sample, d); });
   return best;
 }
 
