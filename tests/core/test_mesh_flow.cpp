@@ -90,8 +90,8 @@ TEST(MeshFlow, HalfDiscSwitchesWhereTheParabolaReachesThreeQuarterPi) {
 }
 
 TEST(MeshFlow, ConcaveCornersAddNoSpuriousSingularities) {
-  // L-shape, a T and a slot cut into a rectangle: every concave corner turns
-  // its cross arms along the axis, which must balance the flow switches.
+  // docs/flux_balance.md section 2, the arm terms. L-shape, a T and a slot cut into a rectangle: every concave corner
+  // turns its cross arms along the axis, which must balance the flow switches.
   EXPECT_TRUE(flow_of(face({polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})})).singularities.empty());
   EXPECT_TRUE(
       flow_of(face({polygon({{0, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 3}, {1, 3}, {1, 1}, {0, 1}})})).singularities.empty());
@@ -101,6 +101,28 @@ TEST(MeshFlow, ConcaveCornersAddNoSpuriousSingularities) {
 
 // An axis that does not balance (the square's centre junction cut off from
 // its four edges) is an error naming the face and the check, not a result.
+// docs/flux_balance.md section 5: a flare's flow is the corner's own, n = nc,
+// so its k = 0 even where the flare's edge switches to n = 2 further on (on a
+// thin strip with a shallow step, where the disc reaches the step's concave
+// corner). Taking the far end's flow at the corner gave each flare k = +1.
+TEST(MeshFlow, FlaresBesideAShallowStepOnAThinStripAreBalanced) {
+  for (const double step : {0.005, 0.02}) {
+    const FaceModel f =
+        face({polygon({{0, 0}, {2, 0}, {2, step}, {2.5, step}, {2.5, 0}, {10, 0}, {10, 0.1}, {0, 0.1}})});
+    const MedialAxis axis = compute_medial_axis(f);
+    const MeshFlow flow = compute_mesh_flow(f, axis);
+    EXPECT_EQ(flow.sum_k(), predicted_sum_k(f));
+    EXPECT_EQ(predicted_sum_k(f), 0);
+    int flares = 0;
+    for (const MedialVertex& v : axis.vertices) flares += v.kind == MedialVertexKind::Flare;
+    EXPECT_EQ(flares, 6);  // the strip's four corners and the step's two convex ones
+    for (const Singularity& s : flow.singularities) {
+      EXPECT_NE(s.at, SingularitySource::Flare) << "k = " << s.k << " at " << s.p.x << ", " << s.p.y;
+      EXPECT_LE(std::abs(s.k), 1);
+    }
+  }
+}
+
 TEST(MeshFlow, UnbalancedResultIsASelfCheckError) {
   const FaceModel square = face({polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}})}, "the square");
   MedialAxis axis = compute_medial_axis(square);
