@@ -422,15 +422,16 @@ class FlowBuilder {
     }
     // As fine as it gets. The touches move on continuously (a flow or
     // corner switch), or one of them jumps the way touches move, past a
-    // pruned branch (section 3). Anything else with a k is an axis that
-    // folds back on itself, not a singularity.
+    // pruned branch (section 3). Otherwise the axis's points are out of
+    // order there: a unit k is still where the flow switches (the pieces
+    // telescope), a larger one is an axis that folds back on itself.
     const auto [left, right] = sliver_pieces(a, b);
     const int k = (a.q - b.q) + (left ? left->phi : 0) + (right ? right->phi : 0);
     const double jump = std::max(1e3 * distance(a.p, b.p), 1e-6 * face_.size);
     const auto steady = [&](const std::optional<Piece>& p) { return p && std::abs(p->length) <= jump; };
     const auto onwards = [&](const std::optional<Piece>& p) { return p && p->length > jump; };
     const bool jumps = (onwards(left) && steady(right)) || (steady(left) && onwards(right));
-    if (k != 0 && !jumps && !(steady(left) && steady(right))) {
+    if (std::abs(k) > 1 && !jumps && !(steady(left) && steady(right))) {
       std::ostringstream message;
       message << "mesh flow: the medial axis folds back at (" << a.p.x << ", " << a.p.y
               << "): its touching points run backwards or jump on both sides";
