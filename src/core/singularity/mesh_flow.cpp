@@ -488,6 +488,30 @@ class FlowBuilder {
     int q = 0;
   };
 
+  // The whole loops' worth of phi that the boundary pieces from the ends'
+  // left touches to the right touches at the same place add to the plain phi
+  // differences: one each time such a piece runs over the loop's vertex 0.
+  // A left touch with no right touch near it on its loop (its partner is on
+  // another loop) adds nothing.
+  int seam_crossings(const std::vector<End>& away) const {
+    int k = 0;
+    for (const End& end : away) {
+      std::optional<Piece> best;
+      double plain = 0.0;
+      for (const End& other : away) {
+        const auto p = piece(end.left, other.right);
+        if (p && (!best || std::abs(p->length) < std::abs(best->length))) {
+          best = p;
+          plain = other.right.s - end.left.s;
+        }
+      }
+      const LoopMeasure& m = loops_[end.left.loop];
+      if (best && std::abs(best->length) <= 1e-3 * face_.size)
+        k += static_cast<int>(std::lround((best->length - plain) / m.length)) * m.total_phi;
+    }
+    return k;
+  }
+
   void add_vertex(int v, const std::vector<std::vector<State>>& ends) {
     const MedialVertex& vertex = axis_.vertices[v];
     std::vector<End> away;
@@ -502,8 +526,11 @@ class FlowBuilder {
     if (vertex.kind != MedialVertexKind::FiniteContact) {
       // Section 4: round a junction each end's left touch is the next end's
       // right touch, one place, so the boundary between them adds the
-      // difference of phi there, whatever the order of the ends.
+      // difference of phi there, whatever the order of the ends. Two touches
+      // of one place may still lie either side of the loop's vertex 0 (an end
+      // whose last point touches both sides of a smooth join there).
       for (const End& end : away) k += end.right.phi - end.left.phi;
+      k += seam_crossings(away);
     } else {
       // Section 5: round a finite contact the boundary between neighbouring
       // ends is an arc of the circle: from each end's left touch forwards to
