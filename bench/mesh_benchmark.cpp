@@ -573,10 +573,113 @@ void run_scaling(const fs::path& shared, const std::string& face_name, unsigned 
   }
 }
 
+// --stages: where our time goes. Each repeat is a child of its own that
+// meshes the face twice: the first call cold (as --compare times it: a fresh
+// process, libraries not yet touched), the second warm (as in a FreeCAD
+// session after its first mesh). Per stage the least over the repeats.
+struct StageTimes {
+  std::string failure;
+  int quads = 0;
+  std::map<std::string, double> cold, warm;  // stage -> seconds; "total" the whole call
+};
+
+StageTimes stage_times(const mm::FaceModel& face, double size, int repeats, unsigned timeout) {
+  StageTimes times;
+  for (int r = 0; r < repeats; ++r) {
+    const ChildResult child = run_in_child(
+        [&] {
+          mm::PipelineOptions options;
+          options.meshing.size = size;
+          std::ostringstream out;
+          out.precision(17);
+          for (int call = 0; call < 2; ++call) {
+            const mm::MeshedFace meshed = mm::mesh_face(face, options);
+            out << meshed.quality.quads << ' ' << meshed.quality.stage_seconds.size() + 1 << " total "
+                << meshed.quality.seconds << '\n';
+            for (const auto& [name, seconds] : meshed.quality.stage_seconds) out << name << ' ' << seconds << '\n';
+          }
+          return out.str();
+        },
+        timeout);
+    if (!child.failure.empty()) {
+      times.failure = child.failure;
+      return times;
+    }
+    std::istringstream in(child.output);
+    for (auto* into : {&times.cold, &times.warm}) {
+      std::size_t stages = 0;
+      in >> times.quads >> stages;
+      for (std::size_t i = 0; i < stages; ++i) {
+        std::string name;
+        double seconds = 0.0;
+        in >> name >> seconds;
+        const auto found = into->find(name);
+        if (found == into->end() || seconds < found->second) (*into)[name] = seconds;
+      }
+    }
+  }
+  return times;
+}
+
+void run_stages(const fs::path& shared, int repeats, unsigned timeout) {
+  std::vector<fs::path> files = brep_files(shared / "geometry");
+  for (const fs::path& p : brep_files(shared / "realcad" / "faces")) files.push_back(p);
+  std::vector<std::pair<std::string, StageTimes>> rows;
+  std::vector<std::string> names{"total"};
+  for (const fs::path& path : files) {
+    StageTimes t;
+    try {
+      const mm::FaceModel face = mm::read_face_models(path.string(), {}).front();
+      t = stage_times(face, 0.05 * face.size, repeats, timeout);
+    } catch (const std::exception& e) {
+      t.failure = std::string("error: ") + e.what();
+    }
+    for (const auto& [name, seconds] : t.cold)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    rows.emplace_back(path.stem().string(), t);
+  }
+  std::cout << "## Stage times at H = 0.05 x the face's diagonal (ms, least of " << repeats
+            << " runs; cold = first call in a fresh process, warm = the second)\n\n| face | quads";
+  for (const std::string& n : names) std::cout << " | " << n;
+  std::cout << " | warm total";
+  for (const std::string& n : names)
+    if (n != "total") std::cout << " | warm " << n;
+  std::cout << " |\n|---|";
+  for (std::size_t i = 0; i < 2 * names.size() + 1; ++i) std::cout << "---:|";
+  std::cout << "\n";
+  std::map<std::string, double> cold_sum, warm_sum;
+  const auto get = [](const std::map<std::string, double>& m, const std::string& n) {
+    const auto found = m.find(n);
+    return found == m.end() ? 0.0 : found->second;
+  };
+  for (const auto& [name, t] : rows) {
+    std::cout << "| " << name;
+    if (!t.failure.empty()) {
+      std::cout << " | " << t.failure << " |\n";
+      continue;
+    }
+    std::cout << " | " << t.quads;
+    for (const std::string& n : names) {
+      std::cout << " | " << fixed(1e3 * get(t.cold, n), 2);
+      cold_sum[n] += get(t.cold, n);
+    }
+    for (const std::string& n : names) {
+      std::cout << " | " << fixed(1e3 * get(t.warm, n), 2);
+      warm_sum[n] += get(t.warm, n);
+    }
+    std::cout << " |\n";
+  }
+  std::cout << "| all | ";
+  for (const std::string& n : names) std::cout << " | " << fixed(1e3 * cold_sum[n], 1);
+  for (const std::string& n : names) std::cout << " | " << fixed(1e3 * warm_sum[n], 1);
+  std::cout << " |\n";
+}
+
 const char* const kUsage =
-    "usage: mesh_benchmark [--compare] [--scaling] [--shared DIR] [--scaling-face NAME] [--svg-dir DIR]\n"
-    "                      [--timeout S]\n"
+    "usage: mesh_benchmark [--compare] [--scaling] [--stages] [--shared DIR] [--scaling-face NAME] [--svg-dir DIR]\n"
+    "                      [--repeat N] [--timeout S]\n"
     "Prints the comparison with Gmsh and the scaling table as markdown (both unless one is named).\n"
+    "--stages: our time per stage on every compared face, cold and warm, the least of N runs (--repeat, 3).\n"
     "--shared: the folder holding geometry/ and realcad/faces/ (default " MM_SHARED_DIR
     ").\n"
     "--scaling-face: a face of geometry/ (default plate_with_hole). --svg-dir: draw every compared mesh there.\n"
@@ -585,7 +688,8 @@ const char* const kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool compare = false, scaling = false;
+  bool compare = false, scaling = false, stages = false;
+  int repeats = 3;
   fs::path shared = MM_SHARED_DIR;
   std::string scaling_face = "plate_with_hole", svg_dir;
   unsigned timeout = 600;
@@ -596,6 +700,10 @@ int main(int argc, char** argv) {
       compare = true;
     } else if (a == "--scaling") {
       scaling = true;
+    } else if (a == "--stages") {
+      stages = true;
+    } else if (a == "--repeat" && has_value) {
+      repeats = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--shared" && has_value) {
       shared = argv[++i];
     } else if (a == "--scaling-face" && has_value) {
@@ -609,11 +717,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (!compare && !scaling) compare = scaling = true;
+  if (!compare && !scaling && !stages) compare = scaling = true;
   try {
     if (!svg_dir.empty()) fs::create_directories(svg_dir);
     if (compare) run_comparison(shared, svg_dir, timeout);
     if (scaling) run_scaling(shared, scaling_face, timeout);
+    if (stages) run_stages(shared, repeats, timeout);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;

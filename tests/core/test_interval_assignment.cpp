@@ -344,7 +344,7 @@ TEST(IntervalAssignment, ContradictoryBlocksThrowNamingTheBlock) {
   try {
     assign_intervals(p);
     FAIL() << "no counts satisfy both blocks";
-  } catch (const std::runtime_error& e) {
+  } catch (const IntervalsInfeasible& e) {
     EXPECT_NE(std::string(e.what()).find("block 1"), std::string::npos) << e.what();
   }
 }

@@ -2,9 +2,11 @@
 //
 //   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS]
 //
-// Builds N random OCC faces of five families (filleted polygons with holes,
+// Builds N random OCC faces of seven families (filleted polygons with holes,
 // plates with notches and slots, closed B-spline outlines, thin strips with
-// tiny edges, faces bounded by elliptic arcs), each placed anywhere in 3-D at
+// tiny edges, faces bounded by elliptic arcs, NACA sections and high-lift
+// arrangements in a far field, turbine cascade passages: tests/occ/
+// aerofoil_faces.hpp), each placed anywhere in 3-D at
 // a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
 // a time limit: BREP text -> boundary model -> medial axis -> mesh flow ->
 // decomposition -> the face cut into block faces by OCC -> the block mesh
@@ -65,6 +67,7 @@
 #include <string>
 #include <vector>
 
+#include "aerofoil_faces.hpp"
 #include "decomposition_checks.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
@@ -274,11 +277,60 @@ TopoDS_Face elliptic(Rng& rng) {
   return BRepBuilderAPI_MakeFace(wire.Wire()).Face();
 }
 
-const std::vector<std::pair<std::string, TopoDS_Face (*)(Rng&)>> kFamilies = {{"filleted", filleted_polygon},
-                                                                              {"plate", notched_plate},
-                                                                              {"bspline", bspline_outline},
-                                                                              {"strip", thin_strip},
-                                                                              {"elliptic", elliptic}};
+// A random NACA designation: 4-digit (camber 0-6 %, at 0.2-0.6 of the
+// chord) or 5-digit standard (design lift 0.15-0.45, camber position 1-5),
+// thickness 6-24 %.
+std::string naca_digits(Rng& rng) {
+  const int thickness = integer(rng, 6, 24);
+  std::string t = (thickness < 10 ? "0" : "") + std::to_string(thickness);
+  if (uniform(rng, 0, 1) < 0.5) {
+    const int camber = integer(rng, 0, 6);
+    return std::to_string(camber) + std::to_string(camber == 0 ? 0 : integer(rng, 2, 6)) + t;
+  }
+  return std::to_string(integer(rng, 1, 3)) + std::to_string(integer(rng, 1, 5)) + "0" + t;
+}
+
+// One or two NACA sections in the far field, or a slat, main element and
+// flap with slot gaps of 0.3 % to 3 % of the chord.
+TopoDS_Face aerofoil(Rng& rng) {
+  const bool blunt = uniform(rng, 0, 1) < 0.5;
+  if (uniform(rng, 0, 1) < 0.5) {
+    mm::test::HighLift layout;
+    layout.gap = std::pow(10.0, uniform(rng, std::log10(0.003), std::log10(0.03)));
+    layout.slat_angle = uniform(rng, 10, 35);
+    layout.flap_angle = uniform(rng, 10, 45);
+    layout.slat = naca_digits(rng), layout.main = naca_digits(rng), layout.flap = naca_digits(rng);
+    layout.blunt = blunt;
+    return mm::test::high_lift_face(layout, 1.0);
+  }
+  std::vector<mm::test::AerofoilSection> sections{{naca_digits(rng), blunt, 1.0, 0.0, 0.0, uniform(rng, -10, 15)}};
+  if (uniform(rng, 0, 1) < 0.3)  // a tandem: a second section behind and above or below
+    sections.push_back({naca_digits(rng), blunt, uniform(rng, 0.3, 1.0), uniform(rng, 1.3, 2.5),
+                        uniform(rng, -0.6, 0.6), uniform(rng, -10, 15)});
+  return mm::test::far_field_face(sections, 1.0);
+}
+
+// A turbine cascade passage of random stagger, turning, pitch and thickness,
+// its trailing edge sharp or rounded.
+TopoDS_Face cascade(Rng& rng) {
+  mm::test::Cascade c;
+  c.stagger = uniform(rng, -10, 20);
+  c.inlet = uniform(rng, 15, 50);
+  c.outlet = uniform(rng, -60, -20);
+  c.pitch = uniform(rng, 0.7, 1.1);
+  c.thickness = uniform(rng, 0.08, 0.2);
+  c.rounded = uniform(rng, 0, 1) < 0.5;
+  c.te_radius = uniform(rng, 0.005, 0.02);
+  return mm::test::cascade_face(c, 1.0);
+}
+
+// New families go at the end, so that the faces of the old ones keep their
+// numbers and seeds (see generate).
+const std::vector<std::pair<std::string, TopoDS_Face (*)(Rng&)>> kFamilies = {
+    {"filleted", filleted_polygon}, {"plate", notched_plate}, {"bspline", bspline_outline}, {"strip", thin_strip},
+    {"elliptic", elliptic},         {"aerofoil", aerofoil},   {"cascade", cascade}};
+// The families there were when the fuzzer first ran 10 000 faces.
+constexpr std::size_t kFirstFamilies = 5;
 
 // Turned about a random axis, scaled by 1e-3 to 1e4, moved up to 100 times that.
 TopoDS_Face placed(const TopoDS_Face& face, Rng& rng) {
@@ -310,9 +362,31 @@ struct Generated {
   TopoDS_Face face;
 };
 
+// Face i of a run is of family i mod 7. A face of the first five families
+// keeps the number (and so the random numbers) it had when they were the
+// only five: in each round of 7 faces, the 5 old ones number on from 5 per
+// round, so --count 2800 makes the faces --count 2000 made before, plus 800
+// aerofoil and cascade faces; those number 0, 1, 2 ... within their family
+// and draw from a stream of their own.
+struct Numbered {
+  std::size_t family;
+  std::uint64_t number;
+  std::uint64_t stream;
+};
+Numbered number_of(std::uint64_t seed, int i) {
+  const std::size_t family = i % kFamilies.size();
+  const std::uint64_t round = i / kFamilies.size();
+  if (family < kFirstFamilies) {
+    const std::uint64_t number = round * kFirstFamilies + family;
+    return {family, number, seed * 1000003 + number};
+  }
+  return {family, round, (seed * 1000003 + round) * 31 + family};
+}
+
 Generated generate(std::uint64_t seed, int i) {
-  Rng rng(seed * 1000003 + i);
-  const auto& [family, make] = kFamilies[i % kFamilies.size()];
+  const Numbered n = number_of(seed, i);
+  Rng rng(n.stream);
+  const auto& [family, make] = kFamilies[n.family];
   return {family, placed(make(rng), rng)};
 }
 
@@ -444,8 +518,9 @@ int main(int argc, char** argv) {
   std::map<std::string, std::array<int, kOutcomes>> by_family;
   std::map<std::string, int> by_stage;  // faces not ok, by the stage they stopped in
   for (int i = 0; i < o.count; ++i) {
-    const std::string family = kFamilies[i % kFamilies.size()].first;
-    const std::string name = family + "_" + std::to_string(o.seed) + "_" + std::to_string(i);
+    const Numbered numbered = number_of(o.seed, i);
+    const std::string family = kFamilies[numbered.family].first;
+    const std::string name = family + "_" + std::to_string(o.seed) + "_" + std::to_string(numbered.number);
     const std::string path = o.out + "/" + name + ".brep";
     int pipe_fds[2];
     if (pipe(pipe_fds) != 0) return 3;
@@ -463,6 +538,8 @@ int main(int argc, char** argv) {
         BRepTools::Write(g.face, brep);
       } catch (const Standard_Failure& e) {
         result = {kNotBuilt, std::string("OCC: ") + e.GetMessageString()};
+      } catch (const std::invalid_argument& e) {  // parameters an aerofoil builder refuses
+        result = {kNotBuilt, e.what()};
       }
       if (result.second.empty()) {
         std::ofstream(path) << brep.str();

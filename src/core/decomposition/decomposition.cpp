@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -113,7 +115,9 @@ struct Item {
   // range: forward along the loop from `a` to `b`, the whole loop if full
   BoundaryPlace a, b;
   bool full = false;
-  double advance = -1.0;  // how far along the loop, in loop positions; < 0: from a and b alone
+  // How far along the loop, in loop positions (negative where the touches
+  // wobble back); none: from a and b alone.
+  std::optional<double> advance;
   // split: boundary place a -> interior point -> boundary place b
   Vec2 middle;
   int bend = 2;             // elements at the interior point
@@ -402,14 +406,18 @@ class Decomposer {
     }
     // Last: blocks whose flow numbers do not close up (the flow's local
     // bookkeeping) are typed by their angles instead, if they hold no
-    // floating singularity.
+    // floating singularity; with every singularity that can be fixed fixed
+    // if that does not do (a floating one whose block does not close up).
     lenient_ = true;
     strict_end_touches_ = false;
-    try {
-      Decomposition d = attempt(false);
-      d.notes.push_back("every attempt failed a self-check (" + first + ")");
-      return d;
-    } catch (const SelfCheckFailure&) {
+    for (const bool fix_all : {false, true}) {
+      try {
+        Decomposition d = attempt(fix_all);
+        d.fallback = d.fallback || fix_all;
+        d.notes.push_back("every attempt failed a self-check (" + first + ")");
+        return d;
+      } catch (const SelfCheckFailure&) {
+      }
     }
     throw SelfCheckError(face_.name, first);
   }
@@ -474,6 +482,7 @@ class Decomposer {
   // The vertex an edge starts (at_start) or ends at, coincident junctions as one.
   int end_vertex(int e, bool at_start) const { return rep_[at_start ? axis_.edges[e].from : axis_.edges[e].to]; }
 
+  static constexpr double kAtEnd = 1e-2;  // of the last polyline step
   void locate_singularities() {
     for (const Singularity& s : flow_.singularities) {
       Location loc;
@@ -484,6 +493,18 @@ class Decomposer {
       } else {
         loc.edge = s.edge;
         loc.s = project(s.edge, s.p);
+        // A switch at the very end of an edge that ends at a junction is at
+        // the junction: cut there, not a hair's breadth away.
+        const double last = point_count(s.edge) - 1.0;
+        for (const bool at_start : {true, false}) {
+          const int v = at_start ? axis_.edges[s.edge].from : axis_.edges[s.edge].to;
+          const double gap = at_start ? loc.s : last - loc.s;
+          if (v >= 0 && gap < kAtEnd && axis_.vertices[v].kind == MedialVertexKind::Junction) {
+            loc = Location{};
+            loc.vertex = rep_[v];
+            break;
+          }
+        }
       }
       locations_.push_back(loc);
     }
@@ -885,10 +906,7 @@ class Decomposer {
       Cut c;
       c.edge = loc.edge;
       c.s = loc.s;
-      c.point.p = flow_.singularities[m].p;
-      c.point.r = flow_.singularities[m].r;
-      c.point.left = nearest_on_run(index_, pts[i].left, c.point.p);
-      c.point.right = nearest_on_run(index_, pts[i].right, c.point.p);
+      c.point = fix_point(loc.edge, i, flow_.singularities[m].p, flow_.singularities[m].r);
       c.behind = flow_.points[loc.edge][i];
       c.ahead = flow_.points[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
@@ -896,6 +914,19 @@ class Decomposer {
       ++version_;
       ++version_;
     }
+  }
+
+  // The split through a singularity at p between points i and i + 1 of
+  // edge e: its radii go to the two places nearest p on the runs the points
+  // there touch. Where the touches move fast along the segment (the
+  // boundary curving towards the axis) both searches can end at one place
+  // (p lies a little off the exact axis) and the split would be no cut at
+  // all: the nearer of the two medial points is taken then, with its touches.
+  MedialPoint fix_point(int e, int i, Vec2 p, double r) const {
+    const auto& pts = axis_.edges[e].points;
+    const MedialPoint point{p, r, nearest_on_run(index_, pts[i].left, p), nearest_on_run(index_, pts[i].right, p)};
+    if (distance(point.left.point, point.right.point) > tol_) return point;
+    return distance(pts[i].p, p) <= distance(pts[i + 1].p, p) ? pts[i] : pts[i + 1];
   }
 
   // ------------------------------------------------------------ exploring
@@ -1403,14 +1434,18 @@ class Decomposer {
           // Only a finite contact's disc touches an arc between two edges;
           // elsewhere the two touches are one point, at most a step apart
           // (which must never be read as the rest of the loop).
-          if (axis_.vertices[v].kind != MedialVertexKind::FiniteContact) gap.advance = short_step(gap.a, gap.b);
+          if (axis_.vertices[v].kind != MedialVertexKind::FiniteContact)
+            gap.advance = gap.a.loop == gap.b.loop ? signed_step(gap.a, gap.b) : 0.0;
           const auto fixed_here = boundary_fixed_.find(v);
           if (fixed_here != boundary_fixed_.end() && widest_gap(v) == static_cast<int>(k))
             gap.virtual_corners = fixed_here->second;
           o.items.push_back(gap);
         }
       }
-      if (e == e0 && fwd == fwd0 && i == i0) return o;
+      if (e == e0 && fwd == fwd0 && i == i0) {
+        chain_ranges(o);
+        return o;
+      }
     }
     throw SelfCheckFailure("decomposition: a block outline does not close");
   }
@@ -1419,8 +1454,8 @@ class Decomposer {
   // interval: the sum of the small steps between consecutive medial points,
   // so that touches that wobble back a little on a curved boundary never
   // turn a short range into the whole loop the other way round.
-  double advance(const Pieces& p, int e, bool fwd, int i, const Item& range) const {
-    if (range.full) return -1.0;
+  std::optional<double> advance(const Pieces& p, int e, bool fwd, int i, const Item& range) const {
+    if (range.full) return std::nullopt;
     const auto& pts = axis_.edges[e].points;
     const double lo = interval_start(p, e, i), hi = interval_end(p, e, i);
     std::vector<const BoundaryPlace*> places{&range.a};
@@ -1433,10 +1468,77 @@ class Decomposer {
     places.push_back(&range.b);
     double total = 0.0;
     for (std::size_t k = 0; k + 1 < places.size(); ++k) {
-      if (places[k]->loop != range.a.loop || places[k + 1]->loop != range.a.loop) return -1.0;
+      if (places[k]->loop != range.a.loop || places[k + 1]->loop != range.a.loop) return std::nullopt;
       total += signed_step(*places[k], *places[k + 1]);
     }
-    return std::max(total, 0.0);
+    return total;
+  }
+
+  // How far a range runs along its loop as walked, negative where it runs
+  // back a little.
+  double item_advance(const Item& it) const {
+    if (it.full) return static_cast<double>(face_.loops[it.a.loop].edges.size());
+    if (it.advance) return *it.advance;
+    if (distance(it.a.point, it.b.point) <= sliver_length()) return 0.0;
+    const double step = loop_position(it.b) - loop_position(it.a);
+    return step > 0.0 ? step : step + static_cast<double>(face_.loops[it.a.loop].edges.size());
+  }
+
+  // The ranges between two splits of an outline (or all of a split-less
+  // outline) run forwards along one loop from the first split's end to the
+  // second's, their advances adding up to the run's. Where the touches of
+  // the axis wobble back (near a curved end of the axis the touches of its
+  // last points can lie beyond the end's own), a range's end lies behind its
+  // start and would cover boundary its neighbour covers too, so a block
+  // would overlap the next: each range is clamped to the run instead, never
+  // behind the range before it, never past the run's end.
+  void chain_ranges(Outline& o) const {
+    const std::size_t count = o.items.size();
+    std::size_t first = 0;
+    while (first < count && !o.items[first].split) ++first;
+    first = first == count ? 0 : (first + 1) % count;  // the start of a run
+    for (std::size_t done = 0; done < count;) {
+      std::vector<std::size_t> run;
+      while (done < count && !o.items[(first + run.size()) % count].split) {
+        run.push_back((first + run.size()) % count);
+        ++done;
+      }
+      if (!run.empty()) chain_run(o, run);
+      first = (first + run.size() + 1) % count;
+      if (done < count) ++done;  // the split that ends the run
+    }
+  }
+
+  void chain_run(Outline& o, const std::vector<std::size_t>& run) const {
+    const int loop = o.items[run.front()].a.loop;
+    double total = 0.0;
+    for (std::size_t k : run) {
+      const Item& it = o.items[k];
+      if (it.full || it.a.loop != loop || it.b.loop != loop) return;
+      total += item_advance(it);
+    }
+    const double start = loop_position(o.items[run.front()].a), end = start + std::max(total, 0.0);
+    double raw = start, at = start;  // the run so far as walked, and as clamped
+    bool moved = false;              // whether `at` has left the walked position
+    for (std::size_t k = 0; k < run.size(); ++k) {
+      Item& it = o.items[run[k]];
+      raw += item_advance(it);
+      const double next = std::clamp(raw, at, end);
+      if (moved) it.a = place_at_position(loop, at);
+      it.advance = next - at;
+      at = next;
+      moved = next != raw;
+      if (moved && k + 1 < run.size()) it.b = place_at_position(loop, at);
+    }
+  }
+
+  // The boundary place at an unwrapped loop position.
+  BoundaryPlace place_at_position(int loop, double position) const {
+    const int n = static_cast<int>(face_.loops[loop].edges.size());
+    const double wrapped = position - n * std::floor(position / n);
+    const int edge = std::min(static_cast<int>(wrapped), n - 1);
+    const BoundaryEdge& e = face_.loops[loop].edges[edge];
+    return index_.place(loop, edge, e.t_start + (wrapped - edge) * (e.t_end - e.t_start));
   }
 
   // The step from a to b along their loop, the short way round (negative
@@ -1445,11 +1547,6 @@ class Decomposer {
     const double n = static_cast<double>(face_.loops[a.loop].edges.size());
     const double step = loop_position(b) - loop_position(a);
     return step - n * std::round(step / n);
-  }
-
-  // The advance of a range that should be a point or a small step forward.
-  double short_step(const BoundaryPlace& a, const BoundaryPlace& b) const {
-    return a.loop == b.loop ? std::max(signed_step(a, b), 0.0) : 0.0;
   }
 
   // The boundary place on the walking side at position s of interval i.
@@ -1754,19 +1851,16 @@ class Decomposer {
   // those pieces are marked as starting at one.
   std::vector<OutlinePiece> range_pieces(const Item& it, std::vector<bool>& starts_at_virtual, bool sampled) const {
     std::vector<OutlinePiece> result;
-    if (!it.full && distance(it.a.point, it.b.point) <= sliver_length()) return result;
     const Loop& loop = face_.loops[it.a.loop];
     const int n = static_cast<int>(loop.edges.size());
+    // Ends at one point are no range, unless the walk went round the loop
+    // between them (a hole touched only by an axis edge from a fixed
+    // junction back to itself).
+    const double advance = item_advance(it);
+    if (!(advance >= 1e-12)) return result;
+    if (advance <= 0.5 * n && distance(it.a.point, it.b.point) <= sliver_length()) return result;
     const double pa = loop_position(it.a);
-    double pb = loop_position(it.b);
-    if (it.full) {
-      pb = pa + n;
-    } else if (it.advance >= 0.0) {
-      if (it.advance < 1e-12) return result;
-      pb = pa + it.advance;
-    } else if (pb <= pa) {
-      pb += n;
-    }
+    const double pb = pa + advance;
     std::vector<std::pair<double, bool>> breaks;  // loop position, virtual corner there
     for (int k = static_cast<int>(std::floor(pa)) + 1; k < pb; ++k) breaks.emplace_back(k, false);
     for (int v = 0; v < it.virtual_corners; ++v)
@@ -1834,10 +1928,13 @@ class Decomposer {
     return it == corner_of_.end() ? 2 : face_.corners[it->second].nc;
   }
 
+  // How far the sampled outlines handed out may stray from the curved sides.
+  double chord_tolerance() const { return 1e-4 * face_.size; }
+
   // Parameters of the points drawn along a boundary edge, computed once.
   const std::vector<double>& edge_samples(int loop, int edge) const {
     auto& cached = samples_[{loop, edge}];
-    if (cached.empty()) cached = sample_edge_parameters(face_.loops[loop].edges[edge], 1e-4 * face_.size);
+    if (cached.empty()) cached = sample_edge_parameters(face_.loops[loop].edges[edge], chord_tolerance());
     return cached;
   }
 
@@ -1989,6 +2086,10 @@ class Decomposer {
           std::all_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 1; });
       if (it != unit_in.end()) {
         b.singularity = it->second;
+        for (int m : d.singularities[it->second].members) {
+          if (!holds(b.outline, flow_.singularities[m].p))
+            throw SelfCheckFailure("decomposition: a block's singularity lies outside its outline");
+        }
         b.kind = convex && simple(o) && b.corners.size() <= 6 ? BlockKind::Polygon : BlockKind::Submap;
         if (b.kind == BlockKind::Submap) {
           d.fallback = true;
@@ -2005,10 +2106,28 @@ class Decomposer {
       d.blocks.push_back(std::move(b));
     }
     if (std::abs(total - face_.area) > 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size) {
-      throw SelfCheckFailure("decomposition: the blocks' areas add up to " + std::to_string(total) +
-                             ", the face's is " + std::to_string(face_.area));
+      std::ostringstream text;
+      text << std::setprecision(10) << "decomposition: the blocks' areas add up to " << total << ", the face's is "
+           << face_.area << " (off by " << std::setprecision(3) << (total - face_.area) / face_.area << " of it)";
+      throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // Whether p lies inside a closed outline or on it. Where the medial axis
+  // misses a branch, a piece of axis can sweep a region apart from the one
+  // its outline walks round: the areas still add up, but a singularity on
+  // that piece would be put in the wrong block.
+  bool holds(const std::vector<Vec2>& outline, Vec2 p) const {
+    bool in = false;
+    double nearest = 1e300;
+    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+      const Vec2 a = outline[i], b = outline[j], d = b - a;
+      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * d.x / d.y) in = !in;
+      const double f = dot(d, d) > 0 ? std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0) : 0.0;
+      nearest = std::min(nearest, distance(a + f * d, p));
+    }
+    return in || nearest <= chord_tolerance();
   }
 
   // Whether two split pieces of a block's outline cross (two splits ending

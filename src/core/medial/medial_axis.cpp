@@ -61,6 +61,7 @@ class Builder {
     keep_genuine_edges();
     build_nodes();
     prune_ripple_branches();
+    join_isolated_finite_contacts();
     keep_connected_axis();
     classify_nodes();
     trace_chains();
@@ -282,6 +283,104 @@ class Builder {
     }
   }
 
+  // A fillet of large radius turning little (a nearly flat convex corner)
+  // has the finite contact at its centre, and from there a branch along the
+  // bisector of the two sides it joins, to a junction with the rest of the
+  // axis. A single chord (or a few) standing for such an arc puts the apex
+  // of its Voronoi cell about twice the radius out, not at the centre, and
+  // when the junction is nearer than that the diagram has no such branch:
+  // the finite contact stays alone. The branch is added here, as a Voronoi
+  // edge between the chords beside the arc, from the centre to the end of
+  // the first kept Voronoi edge it meets going away from the arc; that node
+  // becomes a junction, placed exactly by make_junction.
+  void join_isolated_finite_contacts() {
+    for (std::size_t vi = 0; vi < axis_.vertices.size(); ++vi) {
+      const MedialVertex& v = axis_.vertices[vi];
+      if (v.kind != MedialVertexKind::FiniteContact || v.contact_angle >= 2 * kPi - 1e-9) continue;
+      bool joined = false;
+      for (std::size_t n = 0; n < nodes_.size() && !joined; ++n)
+        joined = nodes_[n].edges.size() == 1 && finite_contact_for(static_cast<int>(n)) == static_cast<int>(vi);
+      if (joined) continue;
+      const BoundaryPlace& arc_start = v.touches.front();
+      int first = -1, last = -1;  // the arc's chords
+      for (std::size_t k = 0; k < graph_.segments.size(); ++k) {
+        const BoundarySegment& seg = graph_.segments[k];
+        if (seg.loop != arc_start.loop || seg.edge != arc_start.edge) continue;
+        if (first < 0) first = static_cast<int>(k);
+        last = static_cast<int>(k);
+      }
+      if (first < 0) continue;
+      const int before = graph_.segments[first].previous, after = graph_.segments[last].next;
+      if (graph_.segments[before].edge == arc_start.edge || graph_.segments[after].edge == arc_start.edge) continue;
+      const BoundaryEdge& arc = index_.edge(arc_start.loop, arc_start.edge);
+      const Vec2 away = normalized(v.p - evaluate(arc.curve, 0.5 * (arc.t_start + arc.t_end)).p);
+      // The first kept Voronoi edge the ray from the centre crosses, split there.
+      int crossed = -1;
+      double nearest = 1e300;
+      for (const auto& [e, ends] : edge_nodes_) {
+        const Vec2 a = node_point(ends.first), b = node_point(ends.second);
+        const double denominator = cross(away, b - a);
+        if (std::abs(denominator) < 1e-300) continue;
+        const double u = cross(away, v.p - a) / -denominator;  // along a -> b
+        const double s = cross(a - v.p, b - a) / denominator;  // along the ray
+        if (u < 0 || u > 1 || s <= 0 || s >= nearest) continue;
+        nearest = s;
+        crossed = e;
+      }
+      if (crossed < 0) continue;
+      const int meet = split_voronoi_edge(crossed, v.p + nearest * away);
+      VoronoiVertex centre;
+      centre.p = v.p;
+      centre.r = v.r;
+      centre.sites = {Site{before, Site::kSegment}, Site{after, Site::kSegment}};
+      add_voronoi_edge(add_voronoi_vertex(centre), node_vertex_[meet], centre.sites[0], centre.sites[1]);
+    }
+  }
+
+  int add_voronoi_vertex(const VoronoiVertex& vertex) {
+    graph_.vertices.push_back(vertex);
+    voronoi_neighbours_.emplace_back();
+    node_of_.push_back(-1);
+    return static_cast<int>(graph_.vertices.size()) - 1;
+  }
+
+  // A kept Voronoi edge between two Voronoi vertices, with its nodes.
+  int add_voronoi_edge(int from, int to, const Site& left, const Site& right) {
+    graph_.edges.push_back({from, to, left, right});
+    const int edge = static_cast<int>(graph_.edges.size()) - 1;
+    voronoi_neighbours_[from].push_back(edge);
+    voronoi_neighbours_[to].push_back(edge);
+    const int a = node_id(from), b = node_id(to);
+    edge_nodes_[edge] = {a, b};
+    nodes_[a].edges.push_back(edge);
+    nodes_[b].edges.push_back(edge);
+    return edge;
+  }
+
+  // Splits a kept Voronoi edge at the point p on its chord; the node there.
+  int split_voronoi_edge(int edge, Vec2 p) {
+    const VoronoiEdge old = graph_.edges[edge];
+    const auto [a, b] = edge_nodes_.at(edge);
+    VoronoiVertex middle;
+    middle.p = p;
+    middle.r = distance(p, site_point(graph_, old.left, p));
+    middle.sites = {old.left, old.right};
+    const int vertex = add_voronoi_vertex(middle);
+    // The old edge now ends at the new vertex; a second one goes on from it
+    // to the far node (whose Voronoi vertex may stand for several merged).
+    graph_.edges[edge].to = vertex;
+    auto& far_end = voronoi_neighbours_[old.to];
+    far_end.erase(std::remove(far_end.begin(), far_end.end(), edge), far_end.end());
+    voronoi_neighbours_[vertex].push_back(edge);
+    auto& far_node = nodes_[b].edges;
+    far_node.erase(std::remove(far_node.begin(), far_node.end(), edge), far_node.end());
+    const int node = node_id(vertex);
+    edge_nodes_[edge] = {a, node};
+    nodes_[node].edges.push_back(edge);
+    add_voronoi_edge(vertex, node_vertex_[b], old.left, old.right);
+    return node;
+  }
+
   // The medial axis is connected, its pieces of Voronoi edges joined directly
   // or through the centre of an arc they run into. Near a curvature contact on
   // a nearly round cap the two feet stay within kSamePlace of each other over
@@ -360,6 +459,12 @@ class Builder {
     }
     for (int v : nearby) {
       for (const Site& site : graph_.vertices[v].sites) add_distinct(places, place_of(site, p), kSamePlace * size());
+    }
+    // The sites of the node's own edges (a branch joined to a finite contact
+    // brings sites no Voronoi vertex here has).
+    for (int e : nodes_[node].edges) {
+      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
+      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
     }
     return places;
   }
@@ -467,29 +572,49 @@ class Builder {
   // curvature lies there.
   std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
     if (touches.empty() || r <= 0) return std::nullopt;
-    BoundaryPlace foot = touches.front();
-    foot.corner_itself = false;
-    foot = nearest_on_run(index_, foot, p);
-    // Samples along the run, in order, from r behind the foot to r ahead.
+    std::optional<MedialVertex> best;
+    bool best_empty = false;
+    // Each touching place's run: beside a reflex corner the end's feet may
+    // lie on either side of it, and the peak on the other side's.
+    for (BoundaryPlace foot : touches) {
+      foot.corner_itself = false;
+      foot = nearest_on_run(index_, foot, p);
+      peaks_near(foot, p, r, best, best_empty);
+    }
+    return best;
+  }
+
+  // The curvature peaks within r of the foot along its run, as candidates for
+  // curvature_contact: best is the nearest to p whose disc is empty, else the
+  // nearest.
+  void peaks_near(const BoundaryPlace& foot, Vec2 p, double r, std::optional<MedialVertex>& best,
+                  bool& best_empty) const {
+    // Samples along the run, in order, from r behind the foot to r ahead;
+    // a run cut short by a corner ends at the corner.
     constexpr int kSamples = 64;
     const double ds = r / kSamples;
     std::vector<BoundaryPlace> behind{foot}, ahead{foot};
+    bool corner_behind = false, corner_ahead = false;
     for (int way : {-1, 1}) {
       auto& side = way < 0 ? behind : ahead;
       for (int k = 0; k < kSamples; ++k) {
         BoundaryPlace q = side.back();
-        if (!advance(q, way, ds)) break;
+        if (!advance(q, way, ds)) {
+          (way < 0 ? corner_behind : corner_ahead) = true;
+          break;
+        }
         side.push_back(q);
       }
     }
     std::vector<BoundaryPlace> run(behind.rbegin(), behind.rend());
     run.insert(run.end(), ahead.begin() + 1, ahead.end());
     const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
-    std::optional<MedialVertex> best;
-    bool best_empty = false;
-    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      // A peak of the run; at a run's end only where a corner cut it short
+      // (the curvature may rise all the way to a reflex corner).
+      if ((i == 0 && !corner_behind) || (i + 1 == run.size() && !corner_ahead)) continue;
       const double k = kappa(run[i]);
-      if (k <= 0 || k < kappa(run[i - 1]) || k < kappa(run[i + 1])) continue;
+      if (k <= 0 || (i > 0 && k < kappa(run[i - 1])) || (i + 1 < run.size() && k < kappa(run[i + 1]))) continue;
       // Golden-section refinement within a sample step either side, on the
       // sample's edge (a closed curve's seam may lie between the samples).
       const BoundaryPlace& at_sample = run[i];
@@ -509,7 +634,10 @@ class Builder {
       }
       const double t = 0.5 * (a + b);
       const BoundaryPlace at = index_.place(at_sample.loop, at_sample.edge, t);
-      if (at.corner >= 0) continue;  // the peak is at a corner: no curvature contact here
+      // A peak at a convex corner is the corner's flare, no contact. At a
+      // reflex corner the disc touching the corner with the curvature of
+      // this side there is the end (the other side turns away from it).
+      if (at.corner >= 0 && !index_.is_reflex(at.loop, at.corner)) continue;
       MedialVertex v;
       v.kind = MedialVertexKind::CurvatureContact;
       v.r = 1.0 / curvature(edge, t);
@@ -521,7 +649,6 @@ class Builder {
       if (!best || empty > best_empty || (empty == best_empty && distance(v.p, p) < distance(best->p, p)))
         best = v, best_empty = empty;
     }
-    return best;
   }
 
   // The medial point on the bisector of an edge's two sites nearest to m.

@@ -14,6 +14,60 @@ double hi(const BoundaryEdge& e) {
   return std::max(e.t_start, e.t_end);
 }
 
+// The first zero of g(t) = (C(t) - m) . C'(t) downhill from t, by safeguarded
+// Newton. Plain Newton does not always settle: with m near a centre of
+// curvature (a medial point near a curvature contact, on a long gently
+// curved B-spline) the distance is nearly flat, g' = |C'|^2 + (C - m) . C''
+// nearly 0, and its steps jump to and fro across the minimum. So first walk
+// downhill until g changes sign (steps growing from the Newton step, none
+// longer than a quarter of the distance to m along the curve, so no dip of
+// the boundary is stepped over), then Newton steps within that bracket,
+// bisecting whenever one leaves it.
+double bracketed_nearest(const BoundaryEdge& edge, double t, Vec2 m) {
+  const double a = lo(edge), b = hi(edge);
+  const auto g_of = [&](double u, double* slope) {
+    const CurvePoint c = evaluate(edge.curve, u);
+    if (slope) *slope = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
+    return dot(c.p - m, c.d1);
+  };
+  const auto longest_step = [&](double u) {
+    const CurvePoint c = evaluate(edge.curve, u);
+    return 0.25 * std::max(norm(c.p - m), 1e-300) / std::max(norm(c.d1), 1e-300);
+  };
+  double slope = 0.0;
+  double g = g_of(t, &slope);
+  const double way = g > 0 ? -1.0 : 1.0;  // downhill
+  double behind = t, ahead = t;           // g(behind) has g's sign, g(ahead) the other
+  bool bracketed = g == 0.0;
+  double step = slope > 0 ? std::abs(g / slope) * 1.5 : 0.0;
+  for (int i = 0; i < 200 && !bracketed; ++i) {
+    // No step below what a parameter far from 0 can resolve.
+    const double least = std::max(1e-12 * (b - a), 8 * std::numeric_limits<double>::epsilon() * std::abs(behind));
+    step = std::max(std::min(step, longest_step(behind)), least);
+    ahead = std::clamp(behind + way * step, a, b);
+    if (ahead == behind) return behind;  // at an end, still going down: the end is nearest
+    if (g_of(ahead, nullptr) * way >= 0.0) {
+      bracketed = true;
+    } else {
+      behind = ahead;
+      step *= 2;
+    }
+  }
+  if (!bracketed || ahead == behind) return behind;
+  double low = std::min(behind, ahead), high = std::max(behind, ahead);  // g(low) < 0 <= g(high)
+  t = 0.5 * (low + high);
+  for (int i = 0; i < 100 && high - low > 1e-15 * (b - a); ++i) {
+    g = g_of(t, &slope);
+    if (g == 0.0) break;
+    (g < 0 ? low : high) = t;
+    const double newton = slope > 0 ? t - g / slope : low - 1.0;
+    const double next = newton > low && newton < high ? newton : 0.5 * (low + high);
+    if (next == t) break;
+    t = next;
+  }
+  return t;
+}
+
 // Nearest parameter of a single edge to m, from the guess t.
 double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
   const double a = lo(edge), b = hi(edge);
@@ -30,9 +84,10 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
     const double turn = std::remainder(u - t, 2 * kPi);
     return std::clamp(std::clamp(t, a, b) + turn, a, b);
   }
-  // General curve: Newton's method on (C(t) - m) . C'(t) = 0, kept in range.
+  // General curve: Newton's method on g(t) = (C(t) - m) . C'(t) = 0, kept in range.
   t = std::clamp(t, a, b);
-  for (int i = 0; i < 50; ++i) {
+  bool settled = false;
+  for (int i = 0; i < 50 && !settled; ++i) {
     const CurvePoint c = evaluate(edge.curve, t);
     const double g = dot(c.p - m, c.d1);
     const double h = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
@@ -47,12 +102,10 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
       if (dot(q - m, q - m) <= here) break;
       next = t + 0.5 * (next - t);
     }
-    if (std::abs(next - t) <= 1e-15 * (b - a)) {
-      t = next;
-      break;
-    }
+    settled = std::abs(next - t) <= 1e-15 * (b - a);
     t = next;
   }
+  if (!settled) t = bracketed_nearest(edge, t, m);
   // Newton may settle on an end where the other end is nearer.
   const double dt = distance(evaluate(edge.curve, t).p, m);
   if (distance(evaluate(edge.curve, a).p, m) < dt) t = a;

@@ -48,6 +48,11 @@ NearestBoundary::~NearestBoundary() = default;
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   std::vector<std::pair<RPoint, BoundaryPlace>> found;
   samples_->tree.query(bgi::nearest(RPoint(p.x, p.y), 6), std::back_inserter(found));
+  // Nearest first (the R-tree hands them over in no order): the stretch of
+  // the nearest sample is always refined from that sample itself, not from
+  // a farther one of its stretch that may lie across a dip or a seam.
+  std::sort(found.begin(), found.end(),
+            [&](const auto& a, const auto& b) { return distance(a.second.point, p) < distance(b.second.point, p); });
   // Refine once per stretch of boundary: samples near a sample already
   // refined lead to the same place, but one edge may pass p twice (a loop
   // that is a single closed curve), each time with a nearest point of its own.

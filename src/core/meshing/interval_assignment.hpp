@@ -2,6 +2,7 @@
 // Interval assignment (the paper's section 4, after Mitchell's integer
 // program): one interval count per segment for the whole face at once, so
 // that every block's template can be built and shared segments conform.
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,10 +31,17 @@ struct IntervalProblem {
 struct IntervalAssignment {
   std::vector<int> counts;               // per segment
   std::vector<std::vector<int>> params;  // per block, see block_shape.hpp
-  // Nothing is ever relaxed: every block condition is a homogeneous linear
-  // equation, so scaling any answer up meets any lower bounds; only the
-  // goals give way, and they always may.
+  // Every block condition is a homogeneous linear equation, so scaling any
+  // answer up meets any lower bounds; only the goals give way. No answer at
+  // all means the equations force some count to 0 (IntervalsInfeasible): the
+  // block structure, not the goals, must change (mesh_blocks does).
   std::vector<std::string> notes;
+};
+
+// No counts satisfy the blocks' conditions, whatever the goals: the block
+// structure itself contradicts (the caller may change a template and retry).
+struct IntervalsInfeasible : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // Least weighted relative deviation from the goals, sum |n_s - goal_s| /
@@ -44,7 +52,7 @@ struct IntervalAssignment {
 // u ~ v with its two rest sides alike. Solved by CBC (10 s limit, best
 // integer answer then). Bad input (ids out of range, wrong side or corner
 // counts, a submap outline not turning +4) throws std::invalid_argument; a
-// problem no counts satisfy throws std::runtime_error naming the first block
+// problem no counts satisfy throws IntervalsInfeasible naming the first block
 // whose conditions cannot hold with those before it.
 IntervalAssignment assign_intervals(const IntervalProblem& problem);
 

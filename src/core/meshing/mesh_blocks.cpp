@@ -208,8 +208,15 @@ class BlockMesher {
     prepare();
     const auto t0 = std::chrono::steady_clock::now();
     IntervalAssignment intervals;
+    std::vector<std::string> relaxed;
     try {
-      intervals = assign_intervals(interval_problem());
+      try {
+        intervals = assign_intervals(interval_problem());
+      } catch (const IntervalsInfeasible&) {
+        relaxed = flatten_three_element_corners();
+        if (relaxed.empty()) throw;
+        intervals = assign_intervals(interval_problem());
+      }
     } catch (const SelfCheckError&) {
       throw;
     } catch (const std::exception& e) {
@@ -222,7 +229,8 @@ class BlockMesher {
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     result.stage_seconds.insert(result.stage_seconds.begin(),
                                 {{"intervals", seconds(t0, t1)}, {"placement", seconds(t1, t2)}});
-    result.notes = intervals.notes;
+    result.notes = relaxed;
+    result.notes.insert(result.notes.end(), intervals.notes.begin(), intervals.notes.end());
     return result;
   }
 
@@ -254,7 +262,13 @@ class BlockMesher {
       // hole (the chordal error grew past what interval assignment bounded).
       SmoothingOptions smoothing;
       smoothing.move_boundary = false;
-      smooth_mesh(face_, mesh_, smoothing);
+      // Unless an element stays folded: then boundary nodes must give way
+      // (a block's few intervals on a hole bunched where its sides meet);
+      // the area check below still bounds the chordal error.
+      if (smooth_mesh(face_, mesh_, smoothing).inverted_after > 0) {
+        smoothing.move_boundary = true;
+        smooth_mesh(face_, mesh_, smoothing);
+      }
     }
     const auto t3 = std::chrono::steady_clock::now();
     if (options_.order == 2) add_midside_nodes();
@@ -295,6 +309,65 @@ class BlockMesher {
   Vec2 segment_end(const Segment& s, bool last) const {
     if (s.split >= 0) return last ? s.line.back() : s.line.front();
     return edge_point(edge_of(s), last ? s.t_to : s.t_from).p;
+  }
+
+  // The relaxation when no counts satisfy the blocks' templates. A corner of
+  // a polygon block (5 or 6 sides) whose two sides run on as one side of the
+  // neighbouring block holds 1 + 2 elements: a valence-3 node (k = -1) right
+  // at the polygon's own k >= +1 centre. Midpoint subdivision then asks the
+  // neighbour's side to equal the sum of two sides of the polygon, which
+  // with a mapped neighbour round a ring contradicts the polygon's own
+  // equations (found on fuzzed rings: a +1 and a -1 on one medial circle).
+  // Taking such corners as flat (at most down to 4 sides) cancels that -1
+  // against the centre: the polygon becomes mapped (or a pentagon), with no
+  // valence-3 node there, and the index sum unchanged. Returns a note per
+  // block changed (none: nothing to relax).
+  std::vector<std::string> flatten_three_element_corners() {
+    std::vector<std::set<std::pair<int, int>>> own(uses_.size());  // consecutive segments within one side
+    for (std::size_t b = 0; b < uses_.size(); ++b)
+      for (const auto& side : uses_[b])
+        for (std::size_t k = 0; k + 1 < side.size(); ++k) own[b].insert({side[k].segment, side[k + 1].segment});
+    std::vector<std::string> notes;
+    for (std::size_t b = 0; b < uses_.size(); ++b) {
+      auto& sides = uses_[b];
+      BlockShape& shape = shapes_[b];
+      if (shape.kind != BlockTemplate::Midpoint || sides.size() < 5) continue;
+      int flattened = 0;
+      for (std::size_t i = 0; i < sides.size() && sides.size() > 4;) {
+        // Corner i: the end of side i - 1, the start of side i.
+        const std::size_t before = (i + sides.size() - 1) % sides.size();
+        const std::pair<int, int> across{sides[i].front().segment, sides[before].back().segment};
+        bool found = false;
+        for (std::size_t other = 0; other < own.size() && !found; ++other)
+          found = other != b && own[other].count(across) > 0;
+        if (!found) {
+          ++i;
+          continue;
+        }
+        // Side i joins side i - 1; corner i goes (at i = 0 the joined side
+        // becomes side 0 and starts at the old last corner).
+        sides[before].insert(sides[before].end(), sides[i].begin(), sides[i].end());
+        shape.side_segments[before].insert(shape.side_segments[before].end(), shape.side_segments[i].begin(),
+                                           shape.side_segments[i].end());
+        sides.erase(sides.begin() + static_cast<std::ptrdiff_t>(i));
+        shape.side_segments.erase(shape.side_segments.begin() + static_cast<std::ptrdiff_t>(i));
+        shape.corner_types.erase(shape.corner_types.begin() + static_cast<std::ptrdiff_t>(i));
+        if (i == 0) {
+          std::rotate(sides.rbegin(), sides.rbegin() + 1, sides.rend());
+          std::rotate(shape.side_segments.rbegin(), shape.side_segments.rbegin() + 1, shape.side_segments.rend());
+          std::rotate(shape.corner_types.rbegin(), shape.corner_types.rbegin() + 1, shape.corner_types.rend());
+        }
+        ++flattened;
+      }
+      if (flattened == 0) continue;
+      if (sides.size() == 4) shape.kind = BlockTemplate::Submap;
+      notes.push_back("interval assignment: block " + std::to_string(b) + "'s template contradicts its neighbours'; " +
+                      std::to_string(flattened) +
+                      " of its corners (valence-3 points on a neighbour's side) taken as flat, "
+                      "so it is meshed with " +
+                      std::to_string(sides.size()) + " sides and its singularity cancels theirs");
+    }
+    return notes;
   }
 
   IntervalProblem interval_problem() const {
@@ -1002,32 +1075,48 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
 
   // One interval assignment: a count per segment, a shared stretch's
   // segments in every face summing alike.
-  IntervalProblem problem;
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    IntervalProblem own = meshers[f]->interval_problem();
-    problem.segments.insert(problem.segments.end(), own.segments.begin(), own.segments.end());
-    for (BlockShape& shape : own.blocks) {
-      for (auto& side : shape.side_segments)
-        for (int& id : side) id += offset[f];
-      problem.blocks.push_back(std::move(shape));
-    }
-  }
   const auto global = [&](const Stretch& st) {
     std::vector<int> ids;
     for (int i : st.segments) ids.push_back(offset[st.face] + i);
     return ids;
   };
+  std::vector<EqualSums> equal_sums;
   for (std::size_t i = 0; i < stretches.size(); ++i) {
     const int root = find_root(parent, static_cast<int>(i));
     if (root == static_cast<int>(i)) continue;
-    problem.equal_sums.push_back({global(stretches[root]), global(stretches[i])});
+    equal_sums.push_back({global(stretches[root]), global(stretches[i])});
     for (int k : {root, static_cast<int>(i)})
       for (int seg : stretches[k].segments) meshers[stretches[k].face]->segment(seg).shared = true;
   }
+  const auto problem = [&]() {
+    IntervalProblem p;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      IntervalProblem own = meshers[f]->interval_problem();
+      p.segments.insert(p.segments.end(), own.segments.begin(), own.segments.end());
+      for (BlockShape& shape : own.blocks) {
+        for (auto& side : shape.side_segments)
+          for (int& id : side) id += offset[f];
+        p.blocks.push_back(std::move(shape));
+      }
+    }
+    p.equal_sums = equal_sums;
+    return p;
+  };
   const auto t0 = std::chrono::steady_clock::now();
   IntervalAssignment intervals;
+  std::vector<std::vector<std::string>> relaxed(faces.size());
   try {
-    intervals = assign_intervals(problem);
+    try {
+      intervals = assign_intervals(problem());
+    } catch (const IntervalsInfeasible&) {
+      bool any = false;
+      for (std::size_t f = 0; f < faces.size(); ++f) {
+        relaxed[f] = meshers[f]->flatten_three_element_corners();
+        any = any || !relaxed[f].empty();
+      }
+      if (!any) throw;
+      intervals = assign_intervals(problem());
+    }
   } catch (const std::exception& e) {
     throw SelfCheckError(face_names(faces),
                          std::string("mesh: the faces' blocks cannot be given interval counts together: ") + e.what());
@@ -1106,7 +1195,8 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     // The assignment and placement were done for all faces at once.
     mesh.stage_seconds.insert(mesh.stage_seconds.begin(), {{"intervals", f == 0 ? seconds(t0, t1) : 0.0},
                                                            {"placement", f == 0 ? seconds(t1, t2) : 0.0}});
-    if (f == 0) mesh.notes = intervals.notes;
+    mesh.notes = relaxed[f];
+    if (f == 0) mesh.notes.insert(mesh.notes.end(), intervals.notes.begin(), intervals.notes.end());
     result.faces.push_back(std::move(mesh));
   }
   return result;
