@@ -104,16 +104,33 @@ class FlowBuilder {
   MeshFlow build() {
     std::vector<std::vector<State>> ends(axis_.edges.size());
     flow_.points.resize(axis_.edges.size());
+    // Junctions joined by an edge of no length are one point where more
+    // than three edges meet, its disc touching four or more places: the
+    // edge between them has no touches of its own to balance, so the group
+    // is balanced as one vertex (section 4).
+    group_.resize(axis_.vertices.size());
+    for (std::size_t v = 0; v < group_.size(); ++v) group_[v] = static_cast<int>(v);
+    for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
+      if (!is_point(static_cast<int>(e))) continue;
+      const int a = root(axis_.edges[e].from), b = root(axis_.edges[e].to);
+      group_[std::max(a, b)] = std::min(a, b);
+    }
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
       const std::vector<State> states = edge_states(static_cast<int>(e));
-      trace_edge(static_cast<int>(e), states);
+      if (is_point(static_cast<int>(e))) {
+        flow_.runs.push_back({static_cast<int>(e), std::abs(states.front().q), {states.front().p, states.back().p}});
+      } else {
+        trace_edge(static_cast<int>(e), states);
+      }
       ends[e] = {states.front(), states.back()};
       for (const State& s : states) {
         flow_.points[e].push_back(
             {s.q, std::abs(s.psi - s.q * kHalfPi), s.l.corner, s.l.arm, s.r_side.corner, s.r_side.arm});
       }
     }
-    for (std::size_t v = 0; v < axis_.vertices.size(); ++v) add_vertex(static_cast<int>(v), ends);
+    for (std::size_t v = 0; v < axis_.vertices.size(); ++v) {
+      if (root(static_cast<int>(v)) == static_cast<int>(v)) add_vertex(static_cast<int>(v), ends);
+    }
     return std::move(flow_);
   }
 
@@ -124,6 +141,23 @@ class FlowBuilder {
     double length = 0.0;
     int total_phi = 0;  // sum of 2 - nc over the loop's corners
   };
+
+  // An edge of no length between two junctions.
+  bool is_point(int e) const {
+    const MedialEdge& edge = axis_.edges[e];
+    if (edge.from < 0 || edge.to < 0 || edge.from == edge.to) return false;
+    const auto junction = [&](int v) { return axis_.vertices[v].kind == MedialVertexKind::Junction; };
+    if (!junction(edge.from) || !junction(edge.to)) return false;
+    for (const MedialPoint& m : edge.points) {
+      if (distance(m.p, edge.points.front().p) > 1e-9 * face_.size) return false;
+    }
+    return true;
+  }
+
+  int root(int v) const {
+    while (group_[v] != v) v = group_[v];
+    return v;
+  }
 
   bool is_concave(int corner) const {
     return corner >= 0 && index_.is_reflex(face_.corners[corner].loop, face_.corners[corner].vertex);
@@ -330,7 +364,7 @@ class FlowBuilder {
       // touches are those its edge's slivers reach (section 4).
       if (end.degenerate) continue;
       const auto [left, right] = at_last ? sliver_pieces(next, end) : sliver_pieces(end, next);
-      const double jump = std::max(1e3 * distance(end.p, next.p), 1e-6 * face_.size);
+      const double jump = std::max(10 * distance(end.p, next.p), 1e-6 * face_.size);
       if (left && right && std::abs(left->length) <= jump && std::abs(right->length) <= jump) continue;
       end =
           state_at({end.p, end.r, nearest_on_run(index_, next.left, end.p), nearest_on_run(index_, next.right, end.p)});
@@ -454,8 +488,13 @@ class FlowBuilder {
     for (std::size_t i = 1; i < states.size(); ++i) {
       std::vector<Switch> switches;
       locate(states[i - 1], states[i], 0, switches);
+      // A switch between a flare and the edge's first point beside it, no
+      // further from the corner than the axis's points resolve, is the flare's.
+      const int flare = i == 1 && states.front().end                  ? axis_.edges[e].from
+                        : i + 1 == states.size() && states.back().end ? axis_.edges[e].to
+                                                                      : -1;
       for (const Switch& s : switches) {
-        if (const int v = vertex_at(e, s.p); v >= 0) {
+        if (const int v = flare >= 0 ? flare : vertex_at(e, s.p); v >= 0) {
           at_vertex_[v] += s.k;  // a switch right at a vertex belongs to the vertex's balance
         } else if (s.k != 0) {
           // A jump stands for the junction of the branch pruned there.
@@ -515,13 +554,19 @@ class FlowBuilder {
   void add_vertex(int v, const std::vector<std::vector<State>>& ends) {
     const MedialVertex& vertex = axis_.vertices[v];
     std::vector<End> away;
-    for (int e : vertex.edges) {  // listed once even when both ends are here
-      const MedialEdge& edge = axis_.edges[e];
-      if (edge.from == v) away.push_back({ends[e].front().l, ends[e].front().r_side, ends[e].front().q});
-      if (edge.to == v) away.push_back({ends[e].back().r_side, ends[e].back().l, -ends[e].back().q});
+    int k = 0;
+    for (std::size_t u = 0; u < axis_.vertices.size(); ++u) {
+      if (root(static_cast<int>(u)) != v) continue;
+      k += at_vertex_[static_cast<int>(u)];
+      for (int e : axis_.vertices[u].edges) {  // listed once even when both ends are here
+        const MedialEdge& edge = axis_.edges[e];
+        if (is_point(e)) continue;
+        if (edge.from == int(u)) away.push_back({ends[e].front().l, ends[e].front().r_side, ends[e].front().q});
+        if (edge.to == int(u)) away.push_back({ends[e].back().r_side, ends[e].back().l, -ends[e].back().q});
+      }
     }
     const int d = static_cast<int>(away.size());
-    int k = 2 * d - 4 + at_vertex_[v];
+    k += 2 * d - 4;
     for (const End& end : away) k -= end.q;
     if (vertex.kind != MedialVertexKind::FiniteContact) {
       // Section 4: round a junction each end's left touch is the next end's
@@ -573,6 +618,7 @@ class FlowBuilder {
   std::map<std::pair<int, int>, int> corner_of_;
   std::vector<LoopMeasure> loops_;
   std::map<int, int> at_vertex_;  // k of switches found right at a vertex
+  std::vector<int> group_;        // the junction a junction is balanced with, by edges of no length
   MeshFlow flow_;
 };
 
