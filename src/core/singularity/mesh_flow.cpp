@@ -94,7 +94,8 @@ class FlowBuilder {
         m.total_phi += weight;
         m.start.push_back(s);
         m.phi.push_back(phi);
-        s += edge_length(face.loops[l].edges[e]);
+        m.edge_length.push_back(edge_length(face.loops[l].edges[e]));
+        s += m.edge_length.back();
       }
       m.length = s;
       loops_.push_back(std::move(m));
@@ -136,8 +137,9 @@ class FlowBuilder {
 
  private:
   struct LoopMeasure {
-    std::vector<double> start;  // arc length at the start of each edge
-    std::vector<int> phi;       // phi along each edge
+    std::vector<double> start;        // arc length at the start of each edge
+    std::vector<double> edge_length;  // measured once: a B-spline's length is an integral
+    std::vector<int> phi;             // phi along each edge
     double length = 0.0;
     int total_phi = 0;  // sum of 2 - nc over the loop's corners
   };
@@ -202,7 +204,7 @@ class FlowBuilder {
       s.radius = s.inward = perp(edge_tangent(e, place.t));
       const double span = e.t_end - e.t_start;
       const double f = span != 0.0 ? std::clamp((place.t - e.t_start) / span, 0.0, 1.0) : 0.0;
-      s.s = m.start[place.edge] + f * edge_length(e);
+      s.s = m.start[place.edge] + f * m.edge_length[place.edge];
       s.phi = m.phi[place.edge];
     }
     // The end of the loop is its start: one phi for one place.
