@@ -361,6 +361,15 @@ std::vector<fs::path> brep_files(const fs::path& folder) {
   return files;
 }
 
+// The compared faces: every reference face (true: counted in the irregular
+// node total), then every real CAD face.
+std::vector<std::pair<fs::path, bool>> compared_faces(const fs::path& shared) {
+  std::vector<std::pair<fs::path, bool>> files;
+  for (const fs::path& p : brep_files(shared / "geometry")) files.emplace_back(p, true);
+  for (const fs::path& p : brep_files(shared / "realcad" / "faces")) files.emplace_back(p, false);
+  return files;
+}
+
 struct FaceRow {
   std::string name;
   bool reference = false;  // one of the 18 faces of geometry/
@@ -445,10 +454,7 @@ std::string gmsh_version(unsigned timeout) {
 }
 
 void run_comparison(const fs::path& shared, const std::string& svg_dir, unsigned timeout) {
-  std::vector<std::pair<fs::path, bool>> files;
-  for (const fs::path& p : brep_files(shared / "geometry")) files.emplace_back(p, true);
-  for (const fs::path& p : brep_files(shared / "realcad" / "faces")) files.emplace_back(p, false);
-
+  const std::vector<std::pair<fs::path, bool>> files = compared_faces(shared);
   std::cout << "## Ours against Gmsh " << gmsh_version(timeout) << " at H = 0.05 x the face's diagonal\n\n"
             << "Ours: mesh_face, order 1, default options; time = the whole call (medial axis to quality), "
                "\"blocks ms\" = the block meshing stages alone. Gmsh: generate(2) alone. All meshes judged by "
@@ -622,11 +628,9 @@ StageTimes stage_times(const mm::FaceModel& face, double size, int repeats, unsi
 }
 
 void run_stages(const fs::path& shared, int repeats, unsigned timeout) {
-  std::vector<fs::path> files = brep_files(shared / "geometry");
-  for (const fs::path& p : brep_files(shared / "realcad" / "faces")) files.push_back(p);
   std::vector<std::pair<std::string, StageTimes>> rows;
   std::vector<std::string> names{"total"};
-  for (const fs::path& path : files) {
+  for (const auto& [path, reference] : compared_faces(shared)) {
     StageTimes t;
     try {
       const mm::FaceModel face = mm::read_face_models(path.string(), {}).front();

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "geometry/polygon.hpp"
 #include "medial/nearest.hpp"
 
 // How the decomposition works.
@@ -895,13 +896,10 @@ class Decomposer {
         c.reason = SplitReason::Fix;
         cuts_.push_back(c);
         ++version_;
-        ++version_;
-        ++version_;
         vertex_cuts_.insert(loc.vertex);
         continue;
       }
       if (cut_at(loc.edge, loc.s)) continue;
-      const auto& pts = axis_.edges[loc.edge].points;
       const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
       Cut c;
       c.edge = loc.edge;
@@ -911,7 +909,6 @@ class Decomposer {
       c.ahead = flow_.points[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
       cuts_.push_back(c);
-      ++version_;
       ++version_;
     }
   }
@@ -2119,15 +2116,7 @@ class Decomposer {
   // its outline walks round: the areas still add up, but a singularity on
   // that piece would be put in the wrong block.
   bool holds(const std::vector<Vec2>& outline, Vec2 p) const {
-    bool in = false;
-    double nearest = 1e300;
-    for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
-      const Vec2 a = outline[i], b = outline[j], d = b - a;
-      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * d.x / d.y) in = !in;
-      const double f = dot(d, d) > 0 ? std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0) : 0.0;
-      nearest = std::min(nearest, distance(a + f * d, p));
-    }
-    return in || nearest <= chord_tolerance();
+    return inside_polygon(outline, p) || distance_to_polygon(outline, p) <= chord_tolerance();
   }
 
   // Whether two split pieces of a block's outline cross (two splits ending

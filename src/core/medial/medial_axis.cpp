@@ -345,7 +345,7 @@ class Builder {
   }
 
   // A kept Voronoi edge between two Voronoi vertices, with its nodes.
-  int add_voronoi_edge(int from, int to, const Site& left, const Site& right) {
+  void add_voronoi_edge(int from, int to, const Site& left, const Site& right) {
     graph_.edges.push_back({from, to, left, right});
     const int edge = static_cast<int>(graph_.edges.size()) - 1;
     voronoi_neighbours_[from].push_back(edge);
@@ -354,7 +354,6 @@ class Builder {
     edge_nodes_[edge] = {a, b};
     nodes_[a].edges.push_back(edge);
     nodes_[b].edges.push_back(edge);
-    return edge;
   }
 
   // Splits a kept Voronoi edge at the point p on its chord; the node there.

@@ -45,15 +45,17 @@ struct IntervalsInfeasible : std::runtime_error {
 };
 
 // Least weighted relative deviation from the goals, sum |n_s - goal_s| /
-// max(goal_s, 1), subject to every block's conditions (block_shape.hpp) and
-// n_s >= min_count, and every equal_sums pair summing alike. Template parameters the equations leave free (Disc a, b;
-// TwoSided and OneSided u, v) are chosen by a tie-break far below one
-// interval of deviation: a ~ b, the midpoint triangle's sides alike, OneSided
-// u ~ v with its two rest sides alike. Solved by CBC (10 s limit, best
-// integer answer then). Bad input (ids out of range, wrong side or corner
-// counts, a submap outline not turning +4) throws std::invalid_argument; a
-// problem no counts satisfy throws IntervalsInfeasible naming the first block
-// whose conditions cannot hold with those before it.
+// max(goal_s, 1), subject to every block's conditions (block_shape.hpp),
+// n_s >= min_count, and every equal_sums pair summing alike. Template parameters
+// the equations leave free (Disc a, b; TwoSided and OneSided u, v) are chosen
+// by a tie-break far below one interval of deviation: a ~ b, the midpoint
+// triangle's sides alike, OneSided u ~ v with its two rest sides alike; among
+// equal deviations the fewest intervals. Solved by Clp's LP relaxation when
+// that is integral, else by CBC (10 s limit, best integer answer then). Bad
+// input (ids out of range, wrong side or corner counts, a submap outline not
+// turning +4) throws std::invalid_argument; a problem no counts satisfy throws
+// IntervalsInfeasible naming the first block whose conditions cannot hold with
+// those before it.
 IntervalAssignment assign_intervals(const IntervalProblem& problem);
 
 }  // namespace mm

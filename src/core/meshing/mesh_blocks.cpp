@@ -188,6 +188,19 @@ std::string at(Vec2 p) {
 // block outline ends of the faces meshed with it lie on its edges.
 using EdgeCuts = std::vector<std::vector<std::vector<double>>>;
 
+// Interval assignment of the problem make_problem() builds; when no counts
+// satisfy the blocks at all, once more after relax() has changed the blocks
+// (relax returns whether it changed any).
+template <class MakeProblem, class Relax>
+IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax& relax) {
+  try {
+    return assign_intervals(make_problem());
+  } catch (const IntervalsInfeasible&) {
+    if (!relax()) throw;
+    return assign_intervals(make_problem());
+  }
+}
+
 // One face's blocks, in phases: prepare (segments and their shared ends),
 // place (nodes on the segments for given interval counts, then the block
 // templates), finish (smoothing, order 2, checks). run() does all three
@@ -210,13 +223,11 @@ class BlockMesher {
     IntervalAssignment intervals;
     std::vector<std::string> relaxed;
     try {
-      try {
-        intervals = assign_intervals(interval_problem());
-      } catch (const IntervalsInfeasible&) {
-        relaxed = flatten_three_element_corners();
-        if (relaxed.empty()) throw;
-        intervals = assign_intervals(interval_problem());
-      }
+      intervals = assign_or_relax([&] { return interval_problem(); },
+                                  [&] {
+                                    relaxed = flatten_three_element_corners();
+                                    return !relaxed.empty();
+                                  });
     } catch (const SelfCheckError&) {
       throw;
     } catch (const std::exception& e) {
@@ -1106,17 +1117,14 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   IntervalAssignment intervals;
   std::vector<std::vector<std::string>> relaxed(faces.size());
   try {
-    try {
-      intervals = assign_intervals(problem());
-    } catch (const IntervalsInfeasible&) {
+    intervals = assign_or_relax(problem, [&] {
       bool any = false;
       for (std::size_t f = 0; f < faces.size(); ++f) {
         relaxed[f] = meshers[f]->flatten_three_element_corners();
         any = any || !relaxed[f].empty();
       }
-      if (!any) throw;
-      intervals = assign_intervals(problem());
-    }
+      return any;
+    });
   } catch (const std::exception& e) {
     throw SelfCheckError(face_names(faces),
                          std::string("mesh: the faces' blocks cannot be given interval counts together: ") + e.what());

@@ -26,15 +26,16 @@ struct BlockMesh {
   std::vector<std::pair<std::string, double>> stage_seconds;
 };
 
-// Meshes every block of the decomposition. When no interval counts satisfy
-// the blocks' templates, polygon blocks' corners that are valence-3 points
-// on a neighbour's side are taken as flat and the assignment retried (a
-// note says so); when smoothing with boundary nodes fixed leaves a folded
-// element, it runs again letting them slide along their curves. Throws InputError for a size that
-// is not a positive number or an order other than 1 or 2, and SelfCheckError
-// naming the face when the mesh fails its own checks: conformity (every inner
-// edge in two quads, every outer one on the boundary), no inverted element
-// (the worst one named), area equal to the face's within the chordal error.
+// Meshes every block of the decomposition. When no interval counts satisfy the
+// blocks' templates, polygon blocks' corners that are valence-3 points on a
+// neighbour's side are taken as flat and the assignment retried (a note says
+// so); when smoothing with boundary nodes fixed leaves a folded element, it
+// runs again letting them slide along their curves. Throws InputError for a
+// size that is not a positive number or an order other than 1 or 2, and
+// SelfCheckError naming the face when the mesh fails its own checks: conformity
+// (every inner edge in two quads, every outer one on the boundary), no inverted
+// element (the worst one named), area equal to the face's within the chordal
+// error.
 BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options);
 
 // A piece of boundary two faces meshed together share: the same 3-D curve

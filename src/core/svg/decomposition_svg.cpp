@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "geometry/polygon.hpp"
 #include "svg/svg_writer.hpp"
 
 namespace mm {
@@ -9,26 +10,6 @@ namespace {
 // Pale fills that tell neighbouring blocks apart.
 const char* const kBlockFills[8] = {"#c6dbef", "#c7e9c0", "#fdd0a2", "#dadaeb",
                                     "#fcbba1", "#d9f0a3", "#fde0ef", "#e5f5f9"};
-
-bool inside(const std::vector<Vec2>& polygon, Vec2 p) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 a = polygon[i], b = polygon[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
-  }
-  return in;
-}
-
-double distance_to_outline(const std::vector<Vec2>& polygon, Vec2 p) {
-  double best = 1e300;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 a = polygon[j], d = polygon[i] - a;
-    const double len2 = dot(d, d);
-    const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, distance(a + f * d, p));
-  }
-  return best;
-}
 
 // A point well inside the outline for the label: the best of a grid.
 Vec2 label_point(const std::vector<Vec2>& outline) {
@@ -43,8 +24,8 @@ Vec2 label_point(const std::vector<Vec2>& outline) {
   for (int i = 1; i < n; ++i) {
     for (int j = 1; j < n; ++j) {
       const Vec2 p{box.min.x + (box.max.x - box.min.x) * i / n, box.min.y + (box.max.y - box.min.y) * j / n};
-      if (!inside(outline, p)) continue;
-      const double c = distance_to_outline(outline, p);
+      if (!inside_polygon(outline, p)) continue;
+      const double c = distance_to_polygon(outline, p);
       if (c > clearance) clearance = c, best = p;
     }
   }

@@ -1,0 +1,34 @@
+#pragma once
+// Point tests against a closed polygon given as its corners (the last joins
+// the first), used by the decomposition's self-check and its pictures.
+#include <algorithm>
+#include <vector>
+
+#include "geometry/vec2.hpp"
+
+namespace mm {
+
+// Even-odd rule: whether p lies inside the polygon (a point on it may go
+// either way).
+inline bool inside_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
+  bool in = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2 a = polygon[i], b = polygon[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+  }
+  return in;
+}
+
+// The distance from p to the polygon's outline.
+inline double distance_to_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
+  double best = 1e300;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Vec2 a = polygon[j], d = polygon[i] - a;
+    const double len2 = dot(d, d);
+    const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, distance(a + f * d, p));
+  }
+  return best;
+}
+
+}  // namespace mm
