@@ -527,30 +527,37 @@ class FlowBuilder {
   struct End {
     Side left, right;
     int q = 0;
+    double direction = 0.0;  // the angle at which the edge leaves the vertex
   };
 
-  // The whole loops' worth of phi that the boundary pieces from the ends'
-  // left touches to the right touches at the same place add to the plain phi
-  // differences: one each time such a piece runs over the loop's vertex 0.
-  // A left touch with no right touch near it on its loop (its partner is on
-  // another loop) adds nothing.
-  int seam_crossings(const std::vector<End>& away) const {
-    int k = 0;
-    for (const End& end : away) {
-      std::optional<Piece> best;
-      double plain = 0.0;
-      for (const End& other : away) {
-        const auto p = piece(end.left, other.right);
-        if (p && (!best || std::abs(p->length) < std::abs(best->length))) {
-          best = p;
-          plain = other.right.s - end.left.s;
-        }
-      }
-      const LoopMeasure& m = loops_[end.left.loop];
-      if (best && std::abs(best->length) <= 1e-3 * face_.size)
-        k += static_cast<int>(std::lround((best->length - plain) / m.length)) * m.total_phi;
+  // The angle at which edge e leaves its first (or last) vertex.
+  double leaving(int e, bool at_start) const {
+    const std::vector<MedialPoint>& points = axis_.edges[e].points;
+    const Vec2 end = at_start ? points.front().p : points.back().p;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const Vec2 d = (at_start ? points[i].p : points[points.size() - 1 - i].p) - end;
+      if (norm(d) > 1e-9 * face_.size) return std::atan2(d.y, d.x);
     }
-    return k;
+    return 0.0;
+  }
+
+  // The phi of the boundary between neighbouring ends round a vertex
+  // (section 4). Going round the vertex anticlockwise, each end's left touch
+  // comes just before the next end's right touch: the gap runs forwards from
+  // the one to the other, a point at a junction (the shorter way round takes
+  // up a hair's breadth either way), an arc of the circle at a finite contact.
+  int gaps_phi(std::vector<End> away, bool finite_contact) const {
+    std::sort(away.begin(), away.end(), [](const End& a, const End& b) { return a.direction < b.direction; });
+    int phi = 0;
+    for (std::size_t i = 0; i < away.size(); ++i) {
+      const Side& left = away[i].left;
+      const Side& right = away[(i + 1) % away.size()].right;
+      // Touches on two loops have no boundary between them and add nothing;
+      // were that wrong, the face's sum of k would not balance.
+      const auto p = finite_contact ? ahead(left, right) : piece(left, right);
+      if (p) phi += p->phi;
+    }
+    return phi;
   }
 
   void add_vertex(int v, const std::vector<std::vector<State>>& ends) {
@@ -563,46 +570,15 @@ class FlowBuilder {
       for (int e : axis_.vertices[u].edges) {  // listed once even when both ends are here
         const MedialEdge& edge = axis_.edges[e];
         if (is_point(e)) continue;
-        if (edge.from == int(u)) away.push_back({ends[e].front().l, ends[e].front().r_side, ends[e].front().q});
-        if (edge.to == int(u)) away.push_back({ends[e].back().r_side, ends[e].back().l, -ends[e].back().q});
+        if (edge.from == int(u))
+          away.push_back({ends[e].front().l, ends[e].front().r_side, ends[e].front().q, leaving(e, true)});
+        if (edge.to == int(u))
+          away.push_back({ends[e].back().r_side, ends[e].back().l, -ends[e].back().q, leaving(e, false)});
       }
     }
-    const int d = static_cast<int>(away.size());
-    k += 2 * d - 4;
+    k += 2 * static_cast<int>(away.size()) - 4;
     for (const End& end : away) k -= end.q;
-    if (vertex.kind != MedialVertexKind::FiniteContact) {
-      // Section 4: round a junction each end's left touch is the next end's
-      // right touch, one place, so the boundary between them adds the
-      // difference of phi there, whatever the order of the ends. Two touches
-      // of one place may still lie either side of the loop's vertex 0 (an end
-      // whose last point touches both sides of a smooth join there).
-      for (const End& end : away) k += end.right.phi - end.left.phi;
-      k += seam_crossings(away);
-    } else {
-      // Section 5: round a finite contact the boundary between neighbouring
-      // ends is an arc of the circle: from each end's left touch forwards to
-      // the nearest right touch ahead of it.
-      std::vector<bool> taken(d, false);
-      for (const End& end : away) {
-        int best = -1;
-        Piece best_piece;
-        for (int j = 0; j < d; ++j) {
-          const auto p = ahead(end.left, away[j].right);
-          if (p && (best < 0 || p->length < best_piece.length)) {
-            best = j;
-            best_piece = *p;
-          }
-        }
-        if (best < 0 || taken[best]) {
-          std::ostringstream message;
-          message << "mesh flow: the edges at the finite contact at (" << vertex.p.x << ", " << vertex.p.y
-                  << ") do not pair up round it";
-          throw SelfCheckError(face_.name, message.str());
-        }
-        taken[best] = true;
-        k += best_piece.phi;
-      }
-    }
+    k += gaps_phi(away, vertex.kind == MedialVertexKind::FiniteContact);
     if (k == 0) return;
     const SingularitySource source = vertex.kind == MedialVertexKind::Junction ? SingularitySource::Junction
                                      : vertex.kind == MedialVertexKind::Flare  ? SingularitySource::Flare
