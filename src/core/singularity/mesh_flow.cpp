@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <utility>
 
 #include "medial/nearest.hpp"
-#include "medial/nearest_boundary.hpp"
 
 // The bookkeeping behind the flux balance; docs/flux_balance.md proves each
 // rule. Walk a medial point's path from its left touching point L to the
@@ -77,25 +77,34 @@ struct Piece {
 class FlowBuilder {
  public:
   FlowBuilder(const FaceModel& face, const MedialAxis& axis)
-      : face_(face), axis_(axis), index_(face), nearest_(index_), tolerance_(1e-7 * face.size) {
+      : face_(face), axis_(axis), index_(face), tolerance_(1e-7 * face.size) {
     for (std::size_t i = 0; i < face.corners.size(); ++i) {
       corner_of_[{face.corners[i].loop, face.corners[i].vertex}] = static_cast<int>(i);
     }
-    // Arc length and phi at the start of each edge; phi steps by 2 - nc at
-    // each corner (section 2).
+    // Length along the loop and phi at the start of each edge; phi steps by
+    // 2 - nc at each corner (section 2). Lengths only order touches and tell
+    // near from far, so a coarse polyline serves (a B-spline's exact length
+    // is an integral, far dearer than the rest of the stage).
     for (std::size_t l = 0; l < face.loops.size(); ++l) {
       LoopMeasure m;
       double s = 0.0;
       int phi = 0;
       for (std::size_t e = 0; e < face.loops[l].edges.size(); ++e) {
+        const BoundaryEdge& edge = face.loops[l].edges[e];
         const auto it = corner_of_.find({static_cast<int>(l), static_cast<int>(e)});
         const int weight = it == corner_of_.end() ? 0 : 2 - face.corners[it->second].nc;
         if (e > 0) phi += weight;
         m.total_phi += weight;
         m.start.push_back(s);
         m.phi.push_back(phi);
-        m.edge_length.push_back(edge_length(face.loops[l].edges[e]));
-        s += m.edge_length.back();
+        EdgeMeasure em;
+        em.t = measure_parameters(edge);
+        const std::vector<Vec2> points = edge_points(edge, em.t);
+        em.s.push_back(0.0);
+        for (std::size_t i = 1; i < points.size(); ++i)
+          em.s.push_back(em.s.back() + distance(points[i - 1], points[i]));
+        s += em.s.back();
+        m.edges.push_back(std::move(em));
       }
       m.length = s;
       loops_.push_back(std::move(m));
@@ -136,10 +145,51 @@ class FlowBuilder {
   }
 
  private:
+  // Lengths along one edge: its sample parameters from t_start to t_end and
+  // the polyline's length from the start to each.
+  struct EdgeMeasure {
+    std::vector<double> t, s;
+    double at(double parameter) const {
+      const bool rising = t.back() >= t.front();
+      const auto after = rising ? std::upper_bound(t.begin(), t.end(), parameter)
+                                : std::upper_bound(t.begin(), t.end(), parameter, std::greater<>());
+      if (after == t.begin()) return 0.0;
+      if (after == t.end()) return s.back();
+      const std::size_t i = static_cast<std::size_t>(after - t.begin());
+      return s[i - 1] + (s[i] - s[i - 1]) * (parameter - t[i - 1]) / (t[i] - t[i - 1]);
+    }
+  };
+
+  // Parameters from t_start to t_end for a coarse polyline along an edge:
+  // two per B-spline knot span, a sixteenth of a turn of a circle or an
+  // ellipse, 32 along any other curve.
+  static std::vector<double> measure_parameters(const BoundaryEdge& edge) {
+    const double lo = std::min(edge.t_start, edge.t_end), hi = std::max(edge.t_start, edge.t_end);
+    const CurveType type = curve_type(edge.curve);
+    std::vector<double> cuts{lo};
+    if (type != CurveType::Line) {
+      for (const double b : breakpoints(edge.curve, lo, hi)) cuts.push_back(b);
+    }
+    cuts.push_back(hi);
+    const int per_piece = type == CurveType::Line      ? 1
+                          : type == CurveType::BSpline ? 2
+                          : type == CurveType::Other   ? 32
+                                                       : 0;
+    std::vector<double> t;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      const int n =
+          per_piece > 0 ? per_piece : std::max(1, static_cast<int>(std::ceil((cuts[i + 1] - cuts[i]) / (kPi / 8))));
+      for (int k = 0; k < n; ++k) t.push_back(cuts[i] + (cuts[i + 1] - cuts[i]) * k / n);
+    }
+    t.push_back(hi);
+    if (edge.t_end < edge.t_start) std::reverse(t.begin(), t.end());
+    return t;
+  }
+
   struct LoopMeasure {
-    std::vector<double> start;        // arc length at the start of each edge
-    std::vector<double> edge_length;  // measured once: a B-spline's length is an integral
-    std::vector<int> phi;             // phi along each edge
+    std::vector<double> start;  // length along the loop at the start of each edge
+    std::vector<EdgeMeasure> edges;
+    std::vector<int> phi;  // phi along each edge
     double length = 0.0;
     int total_phi = 0;  // sum of 2 - nc over the loop's corners
   };
@@ -200,11 +250,8 @@ class FlowBuilder {
       s.s = m.start[c.vertex];
       s.phi = m.phi[c.vertex] + s.arm - 1;
     } else {
-      const BoundaryEdge& e = face_.loops[place.loop].edges[place.edge];
-      s.radius = s.inward = perp(edge_tangent(e, place.t));
-      const double span = e.t_end - e.t_start;
-      const double f = span != 0.0 ? std::clamp((place.t - e.t_start) / span, 0.0, 1.0) : 0.0;
-      s.s = m.start[place.edge] + f * m.edge_length[place.edge];
+      s.radius = s.inward = perp(edge_tangent(face_.loops[place.loop].edges[place.edge], place.t));
+      s.s = m.start[place.edge] + m.edges[place.edge].at(place.t);
       s.phi = m.phi[place.edge];
     }
     // The end of the loop is its start: one phi for one place.
@@ -397,10 +444,17 @@ class FlowBuilder {
     return states;
   }
 
-  // Whether a point with these touches is a medial point: no boundary nearer
-  // than its radius.
-  bool is_medial(const Bisected& b) const {
-    return b.converged && distance(nearest_.nearest(b.p).point, b.p) >= b.r - 1e-9 * face_.size;
+  // Whether a point bisected from one state's places is a medial point: no
+  // boundary nearer than its radius. Between two neighbouring states only
+  // the boundary the other state touches can be (past a touch jump the
+  // bisector of one state's places runs on into it), so the runs through
+  // the other state's places are checked, not the whole boundary.
+  bool is_medial(const Bisected& mid, const State& other) const {
+    if (!mid.converged) return false;
+    for (const BoundaryPlace* place : {&other.left, &other.right}) {
+      if (distance(nearest_on_run(index_, *place, mid.p).point, mid.p) < mid.r - 1e-9 * face_.size) return false;
+    }
+    return true;
   }
 
   static double spread(const State& s) { return distance(s.left.point, s.right.point); }
@@ -427,7 +481,7 @@ class FlowBuilder {
       for (const State* from : {&a, &b}) {
         if (from->end || from->degenerate) continue;
         const Bisected mid = bisect(index_, m, from->left, from->right);
-        if (!is_medial(mid) || distance(mid.p, m) > distance(a.p, b.p)) continue;
+        if (!is_medial(mid, from == &a ? b : a) || distance(mid.p, m) > distance(a.p, b.p)) continue;
         State s = state_at({mid.p, mid.r, mid.a, mid.b});
         if (s.degenerate || !touches_between(a, s, b)) continue;
         unwrap(s, from->psi);
@@ -446,10 +500,14 @@ class FlowBuilder {
     int n_after = 0;
   };
 
-  // The switches between two states, found by bisection down to 1e-10 of the face size.
+  // The switches between two states, found by bisection down to 1e-10 of
+  // the face size. Where the flow changes but the sliver's k is 0 (q and a
+  // concave corner's arm change together, or a +1 and a -1 lie close), only
+  // the runs' split is wanted, and 1e-7 of the face places it well enough.
   void locate(const State& a, const State& b, int depth, std::vector<Switch>& out) const {
     if (same_flow(a, b)) return;
-    if (depth < 60 && distance(a.p, b.p) > 1e-10 * face_.size) {
+    const double finest = (sliver_k(a, b) == 0 ? 1e-7 : 1e-10) * face_.size;
+    if (depth < 60 && distance(a.p, b.p) > finest) {
       if (const auto mid = between(a, b)) {
         locate(a, *mid, depth + 1, out);
         locate(*mid, b, depth + 1, out);
@@ -591,7 +649,6 @@ class FlowBuilder {
   const FaceModel& face_;
   const MedialAxis& axis_;
   BoundaryIndex index_;
-  NearestBoundary nearest_;
   double tolerance_;
   std::map<std::pair<int, int>, int> corner_of_;
   std::vector<LoopMeasure> loops_;
