@@ -141,6 +141,7 @@ TEST(Decomposition, TilesRandomFacesOrSaysWhyNot) {
       EXPECT_NE(std::string(e.what()).find(f.name), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("self-check failed"), std::string::npos) << e.what();
       ++self_check_errors;
+      std::cout << e.what() << "\n";
       continue;
     }
     const std::vector<std::string> problems = test::decomposition_problems(f, flow, d);
@@ -151,6 +152,7 @@ TEST(Decomposition, TilesRandomFacesOrSaysWhyNot) {
     if (problems.empty()) continue;
     if (d.fallback) {
       ++flagged;
+      std::cout << f.name << ": flagged: " << problems.front() << "\n";
     } else {
       silent_failures.insert(silent_failures.end(), problems.begin(), problems.end());
       SvgCanvas canvas(bounding_box(f), 800);

@@ -584,15 +584,25 @@ class Decomposer {
     return any;
   }
 
+  // The direction an edge leaves its end vertex in, taken a tenth of the
+  // vertex's radius out (or at the edge's farthest point if it is shorter):
+  // near a junction the medial points can wobble back past the vertex, and
+  // the first step would then point the wrong way and misorder the ends.
   Vec2 end_direction(int e, bool at_start) const {
     const auto& pts = axis_.edges[e].points;
     const Vec2 origin = at_start ? pts.front().p : pts.back().p;
+    const int vertex = at_start ? axis_.edges[e].from : axis_.edges[e].to;
+    const double reach = std::max(tol_, 0.1 * axis_.vertices[vertex].r);
     const int n = point_count(e);
+    Vec2 farthest{1, 0};
+    double far = tol_;
     for (int i = 1; i < n; ++i) {
       const Vec2 q = at_start ? pts[i].p : pts[n - 1 - i].p;
-      if (distance(q, origin) > tol_) return q - origin;
+      const double d = distance(q, origin);
+      if (d > reach) return q - origin;
+      if (d > far) far = d, farthest = q - origin;
     }
-    return {1, 0};
+    return farthest;
   }
 
   void sort_ends() {
