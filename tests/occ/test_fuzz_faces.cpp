@@ -37,6 +37,10 @@
 // wobble back past a junction, so the first step of an edge pointed the
 // wrong way and the walk took the edges round the junction out of order
 // (blocks that overlapped or corners that did not close up).
+// filleted_1_490, _910, _990 and _1490: an edge that overshoots its
+// junction along the next edge, turns back and passes the junction again;
+// it is taken to leave the junction after the turn, and its end touches
+// continue from there (the overshoot's points have their sides swapped).
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -125,7 +129,11 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
                                                                                 {"filleted_1_950", false},
                                                                                 {"filleted_1_1820", false},
                                                                                 {"filleted_1_1980", false},
-                                                                                {"filleted_3_275", false}}) {
+                                                                                {"filleted_3_275", false},
+                                                                                {"filleted_1_490", false},
+                                                                                {"filleted_1_910", false},
+                                                                                {"filleted_1_990", false},
+                                                                                {"filleted_1_1490", false}}) {
     const std::string text = fuzz_face_text(name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);

@@ -590,19 +590,39 @@ class Decomposer {
   // the first step would then point the wrong way and misorder the ends.
   Vec2 end_direction(int e, bool at_start) const {
     const auto& pts = axis_.edges[e].points;
-    const Vec2 origin = at_start ? pts.front().p : pts.back().p;
+    const int n = point_count(e);
+    const auto at = [&](int k) { return pts[at_start ? k : n - 1 - k].p; };
     const int vertex = at_start ? axis_.edges[e].from : axis_.edges[e].to;
     const double reach = std::max(tol_, 0.1 * axis_.vertices[vertex].r);
-    const int n = point_count(e);
     Vec2 farthest{1, 0};
     double far = tol_;
-    for (int i = 1; i < n; ++i) {
-      const Vec2 q = at_start ? pts[i].p : pts[n - 1 - i].p;
-      const double d = distance(q, origin);
-      if (d > reach) return q - origin;
-      if (d > far) far = d, farthest = q - origin;
+    for (int k = leaving_point(e, at_start); k < n; ++k) {
+      const double d = distance(at(k), at(0));
+      if (d > reach) return at(k) - at(0);
+      if (d > far) far = d, farthest = at(k) - at(0);
     }
     return farthest;
+  }
+
+  // The point (counted from the end at_start) an edge leaves its end vertex
+  // from: the first, unless the edge overshoots its vertex along a
+  // neighbouring edge, turns right back and passes the vertex again (a
+  // medial defect), when it is the nearest point to the vertex after the
+  // turn. Only the edge's first half is searched for such a turn.
+  int leaving_point(int e, bool at_start) const {
+    const auto& pts = axis_.edges[e].points;
+    const int n = point_count(e);
+    const auto at = [&](int k) { return pts[at_start ? k : n - 1 - k].p; };
+    for (int k = 1; k + 1 < n / 2; ++k) {
+      const Vec2 in = at(k) - at(k - 1), out = at(k + 1) - at(k);
+      if (!(dot(in, out) < -0.9 * norm(in) * norm(out))) continue;
+      int nearest = k + 1;
+      for (int j = k + 2; j <= n / 2; ++j) {
+        if (distance(at(j), at(0)) < distance(at(nearest), at(0))) nearest = j;
+      }
+      return std::min(nearest + 1, n - 1);
+    }
+    return std::min(1, n - 1);
   }
 
   void sort_ends() {
@@ -1569,13 +1589,16 @@ class Decomposer {
   // The touching place on one side (right: forwards) at an end of edge e,
   // continuing the edge's own touches: the end point carries its vertex's,
   // which at a junction touching several loops need not continue them (the
-  // mesh flow follows the neighbour's touches there too).
+  // mesh flow follows the neighbour's touches there too). The neighbour is
+  // the point the edge leaves from (leaving_point): an overshoot's points
+  // have their sides swapped.
   BoundaryPlace end_place(int e, bool at_start, bool right) const {
     const auto& pts = axis_.edges[e].points;
     const MedialPoint& end = at_start ? pts.front() : pts.back();
     const BoundaryPlace& own = right ? end.right : end.left;
     if (pts.size() < 3) return own;
-    const MedialPoint& next = at_start ? pts[1] : pts[pts.size() - 2];
+    const int leaving = leaving_point(e, at_start);
+    const MedialPoint& next = at_start ? pts[leaving] : pts[pts.size() - 1 - leaving];
     const BoundaryPlace& neighbour = right ? next.right : next.left;
     // A touch on another loop is surely the junction's, not the edge's; on
     // the same loop, a jump of more than twice the medial step is taken as
