@@ -944,16 +944,26 @@ class Decomposer {
   }
 
   // The split through a singularity at p between points i and i + 1 of
-  // edge e: its radii go to the two places nearest p on the runs the points
-  // there touch. Where the touches move fast along the segment (the
+  // edge e: its radii go to the two places nearest p on the runs the nearer
+  // point touches. Where the touches move fast along the segment (the
   // boundary curving towards the axis) both searches can end at one place
   // (p lies a little off the exact axis) and the split would be no cut at
-  // all: the nearer of the two medial points is taken then, with its touches.
+  // all; a point can also carry one place as both its touches (a medial
+  // defect). Then the other point's runs are tried, and last the nearer
+  // medial point whose two touches differ is taken, with its touches.
   MedialPoint fix_point(int e, int i, Vec2 p, double r) const {
     const auto& pts = axis_.edges[e].points;
-    const MedialPoint point{p, r, nearest_on_run(index_, pts[i].left, p), nearest_on_run(index_, pts[i].right, p)};
-    if (distance(point.left.point, point.right.point) > tol_) return point;
-    return distance(pts[i].p, p) <= distance(pts[i + 1].p, p) ? pts[i] : pts[i + 1];
+    const bool first_nearer = distance(pts[i].p, p) <= distance(pts[i + 1].p, p);
+    const int order[2] = {first_nearer ? i : i + 1, first_nearer ? i + 1 : i};
+    const auto apart = [&](const MedialPoint& m) { return distance(m.left.point, m.right.point) > tol_; };
+    for (const int j : order) {
+      const MedialPoint point{p, r, nearest_on_run(index_, pts[j].left, p), nearest_on_run(index_, pts[j].right, p)};
+      if (apart(point)) return point;
+    }
+    for (const int j : order) {
+      if (apart(pts[j])) return pts[j];
+    }
+    return pts[order[0]];
   }
 
   // ------------------------------------------------------------ exploring
