@@ -2138,7 +2138,7 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_))
+        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_) && !cusp_to_polygon(o, b, d))
           throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
@@ -2152,6 +2152,42 @@ class Decomposer {
       throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // A block of convex corners and cusps (corners of no element: a sharp
+  // corner the flow gives 0, or the bend of a split near the end of a
+  // branch) with no singularity, which no typing submaps without a convex
+  // corner where its outline runs straight (a sharp triangle): each cusp
+  // gets one element, and the block becomes the logically convex polygon of
+  // its m corners round a singularity of k = m - 4 of its own (a triangle's
+  // three quads round a k = -1), at its centroid. Returns false when the
+  // block is not such a block.
+  bool cusp_to_polygon(const Outline& o, Block& b, Decomposition& d) const {
+    const int m = static_cast<int>(b.corners.size());
+    const auto cusp = [](const BlockCorner& c) { return c.type == 0; };
+    if (m < 3 || m > 6 || !simple(o) || std::none_of(b.corners.begin(), b.corners.end(), cusp) ||
+        std::any_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type > 1; }))
+      return false;
+    Vec2 centroid{0, 0};
+    double area = 0.0;
+    for (std::size_t i = 0; i < b.outline.size(); ++i) {
+      const Vec2 p = b.outline[i], q = b.outline[(i + 1) % b.outline.size()];
+      const double a = cross(p, q);
+      area += a;
+      centroid = centroid + (p + q) * a;
+    }
+    if (!(std::abs(area) > 0.0)) return false;
+    centroid = centroid / (3.0 * area);
+    if (!inside_polygon(b.outline, centroid)) return false;
+    for (BlockCorner& c : b.corners) c.type = 1;
+    b.kind = BlockKind::Polygon;
+    if (m != 4) {
+      b.singularity = static_cast<int>(d.singularities.size());
+      d.singularities.push_back({centroid, m - 4, false, {}});
+    }
+    d.notes.push_back("a block with a cusp that no typing submaps became a " + std::to_string(m) +
+                      "-sided polygon (its cusp one element)");
+    return true;
   }
 
   // Whether p lies inside a closed outline or on it. Where the medial axis
