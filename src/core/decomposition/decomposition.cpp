@@ -949,16 +949,27 @@ class Decomposer {
   // boundary curving towards the axis) both searches can end at one place
   // (p lies a little off the exact axis) and the split would be no cut at
   // all; a point can also carry one place as both its touches (a medial
-  // defect). Then the other point's runs are tried, and last the nearer
-  // medial point whose two touches differ is taken, with its touches.
+  // defect), or the two can pass each other (see in_order). Then the other
+  // point's runs are tried, and last the nearer medial point whose two
+  // touches differ is taken, with its touches.
   MedialPoint fix_point(int e, int i, Vec2 p, double r) const {
     const auto& pts = axis_.edges[e].points;
     const bool first_nearer = distance(pts[i].p, p) <= distance(pts[i + 1].p, p);
     const int order[2] = {first_nearer ? i : i + 1, first_nearer ? i + 1 : i};
     const auto apart = [&](const MedialPoint& m) { return distance(m.left.point, m.right.point) > tol_; };
+    // Near the end of a branch into a curvature contact the two searches can
+    // also pass each other: the radii then cross, and the block beyond the
+    // split is turned inside out. Where the touches lie close along one loop
+    // their order must stay the medial point's own.
+    const auto in_order = [&](const MedialPoint& m, const MedialPoint& own) {
+      if (m.left.loop != m.right.loop || own.left.loop != own.right.loop || m.left.loop != own.left.loop) return true;
+      const double step = signed_step(own.right, own.left);
+      if (std::abs(step) > 0.25 * static_cast<double>(face_.loops[own.left.loop].edges.size())) return true;
+      return (signed_step(m.right, m.left) > 0) == (step > 0);
+    };
     for (const int j : order) {
       const MedialPoint point{p, r, nearest_on_run(index_, pts[j].left, p), nearest_on_run(index_, pts[j].right, p)};
-      if (apart(point)) return point;
+      if (apart(point) && in_order(point, pts[j])) return point;
     }
     for (const int j : order) {
       if (apart(pts[j])) return pts[j];
