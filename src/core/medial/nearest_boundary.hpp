@@ -1,6 +1,6 @@
 #pragma once
 // The exact nearest boundary place to any point, for checking a medial axis
-// (and later stages): nearest samples from an R-tree, refined on the curves.
+// (and later stages): nearest samples from a grid, refined on the curves.
 #include <memory>
 
 #include "medial/nearest.hpp"
