@@ -964,19 +964,18 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
   const NearestBoundary boundary(index);  // built once for every check below
   MedialAxis best = Builder(face, 1.0).build();
   std::vector<Vec2> best_nearest = nearest_points(boundary, best);
-  repair_edge_points(index, boundary, tolerance, best, best_nearest);
   double best_violation = violation(best_nearest, best);
   double fineness = 1.0;
   for (int i = 0; i < kMaxRefinements && best_violation > tolerance; ++i) {
     fineness *= kRefinement;
     MedialAxis finer = Builder(face, fineness).build();
     std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
-    repair_edge_points(index, boundary, tolerance, finer, finer_nearest);
     const double finer_violation = violation(finer_nearest, finer);
     if (finer_violation < best_violation) {
       best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
     }
   }
+  repair_edge_points(index, boundary, tolerance, best, best_nearest);
   // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
   // both ways: no boundary inside a disc, and every disc touching it.
   const double allowed = 1e-6 * face.size + face.tolerance;
