@@ -90,8 +90,8 @@ TEST(MeshFlow, HalfDiscSwitchesWhereTheParabolaReachesThreeQuarterPi) {
 }
 
 TEST(MeshFlow, ConcaveCornersAddNoSpuriousSingularities) {
-  // L-shape, a T and a slot cut into a rectangle: every concave corner turns
-  // its cross arms along the axis, which must balance the flow switches.
+  // docs/flux_balance.md section 2, the arm terms. L-shape, a T and a slot cut into a rectangle: every concave corner
+  // turns its cross arms along the axis, which must balance the flow switches.
   EXPECT_TRUE(flow_of(face({polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})})).singularities.empty());
   EXPECT_TRUE(
       flow_of(face({polygon({{0, 0}, {3, 0}, {3, 1}, {2, 1}, {2, 3}, {1, 3}, {1, 1}, {0, 1}})})).singularities.empty());
@@ -101,6 +101,62 @@ TEST(MeshFlow, ConcaveCornersAddNoSpuriousSingularities) {
 
 // An axis that does not balance (the square's centre junction cut off from
 // its four edges) is an error naming the face and the check, not a result.
+// docs/flux_balance.md section 5: a flare's flow is the corner's own, n = nc,
+// so its k = 0 even where the flare's edge switches to n = 2 further on (on a
+// thin strip with a shallow step, where the disc reaches the step's concave
+// corner). Taking the far end's flow at the corner gave each flare k = +1.
+TEST(MeshFlow, FlaresBesideAShallowStepOnAThinStripAreBalanced) {
+  for (const double step : {0.005, 0.02}) {
+    const FaceModel f =
+        face({polygon({{0, 0}, {2, 0}, {2, step}, {2.5, step}, {2.5, 0}, {10, 0}, {10, 0.1}, {0, 0.1}})});
+    const MedialAxis axis = compute_medial_axis(f);
+    const MeshFlow flow = compute_mesh_flow(f, axis);
+    EXPECT_EQ(flow.sum_k(), predicted_sum_k(f));
+    EXPECT_EQ(predicted_sum_k(f), 0);
+    int flares = 0;
+    for (const MedialVertex& v : axis.vertices) flares += v.kind == MedialVertexKind::Flare;
+    EXPECT_EQ(flares, 6);  // the strip's four corners and the step's two convex ones
+    for (const Singularity& s : flow.singularities) {
+      EXPECT_NE(s.at, SingularitySource::Flare) << "k = " << s.k << " at " << s.p.x << ", " << s.p.y;
+      EXPECT_LE(std::abs(s.k), 1);
+    }
+  }
+}
+
+// docs/flux_balance.md sections 4 and 5: a rectangle with a half-ellipse on
+// top. The axis ends in curvature contacts at the cap's two smooth joins with
+// the sides, each taking its neighbour's touches, which lie either side of
+// the join. Where the loop starts at a join, the gap between them passes the
+// loop's vertex 0 and must add the loop's phi (the two corners' 2 - nc) on
+// top of the plain phi difference: the answer may not depend on where the
+// loop starts (a plain difference gave that end k = -3 and the face a sum of
+// -4). The -1 on each side is the switch to n = 2 towards the cap's end.
+TEST(MeshFlow, CurvatureContactAtTheLoopsStartIsBalancedLikeAnyOther) {
+  const double a = 2.0, b = 0.8, h = 1.0;
+  const BoundaryEdge cap{EllipseCurve{{0, h}, {1, 0}, a, b, 1}, 0.0, kPi, 0, {}, {}};
+  const std::vector<BoundaryEdge> edges{cap, line({-a, h}, {-a, 0}), line({-a, 0}, {a, 0}), line({a, 0}, {a, h})};
+  std::vector<Vec2> first;
+  for (std::size_t start = 0; start < edges.size(); ++start) {
+    std::vector<BoundaryEdge> loop(edges.begin() + start, edges.end());
+    loop.insert(loop.end(), edges.begin(), edges.begin() + start);
+    const FaceModel f = face({loop}, "capped rectangle from edge " + std::to_string(start));
+    ASSERT_EQ(predicted_sum_k(f), -2);
+    const MeshFlow flow = flow_of(f);
+    ASSERT_EQ(flow.singularities.size(), 2u) << f.name;
+    std::vector<Vec2> places;
+    for (const Singularity& s : flow.singularities) {
+      EXPECT_EQ(s.k, -1) << f.name;  // the switch to n = 2 towards each end of the cap
+      places.push_back(s.p);
+    }
+    std::sort(places.begin(), places.end(), [](Vec2 p, Vec2 q) { return p.x < q.x; });
+    EXPECT_NEAR(places[0].x, -places[1].x, 1e-9) << f.name;  // mirror images, one at each end
+    EXPECT_GT(places[1].x, 0.5 * a) << f.name;
+    EXPECT_NEAR(places[0].y, places[1].y, 1e-9) << f.name;
+    if (first.empty()) first = places;
+    for (std::size_t i = 0; i < places.size(); ++i) EXPECT_NEAR(distance(places[i], first[i]), 0.0, 1e-9) << f.name;
+  }
+}
+
 TEST(MeshFlow, UnbalancedResultIsASelfCheckError) {
   const FaceModel square = face({polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}})}, "the square");
   MedialAxis axis = compute_medial_axis(square);

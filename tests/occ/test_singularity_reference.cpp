@@ -95,6 +95,50 @@ TEST(SingularityReference, PlateWithHoleHasPlusOneAtEachJunction) {
   for (const Singularity& s : flow.singularities) EXPECT_EQ(s.at, SingularitySource::Junction);
 }
 
+FaceModel fuzz_face(const std::string& name) {
+  std::ifstream in(std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/fuzz/" + name + ".brep");
+  std::stringstream text;
+  text << in.rdbuf();
+  return face_model_from_brep_string(text.str(), name);
+}
+
+// docs/flux_balance.md section 5, found by the fuzz program: a thin strip
+// (half-width 3e-5) with a notch 3e-6 deep. Each flare of the notch's convex
+// corners switches to n = 2 where its disc reaches the notch's concave
+// corner; the flare itself keeps the corner's n = nc and k = 0.
+TEST(SingularityReference, FlaresOfATinyNotchInAThinStripAreBalanced) {
+  const FaceModel face = fuzz_face("strip_1_18");
+  const MeshFlow flow = flow_of(face);
+  EXPECT_EQ(flow.sum_k(), 0);
+  EXPECT_EQ(predicted_sum_k(face), 0);
+  for (const Singularity& s : flow.singularities) {
+    EXPECT_NE(s.at, SingularitySource::Flare);
+    EXPECT_LE(std::abs(s.k), 1);
+  }
+}
+
+// Section 3, found by the fuzz program: on a closed B-spline outline a ripple
+// branch is pruned from the axis, and the left touch of the edge it left
+// jumps past the ripple, from q = -1 to q = +1. That sliver carries the
+// branch's k = -2 (reported as the junction it stands for, on the edge);
+// the sum stays the Poincare-Hopf total and no flow switch exceeds |k| = 1.
+TEST(SingularityReference, TouchJumpPastAPrunedBranchCarriesTheBranchesK) {
+  const FaceModel face = fuzz_face("bspline_1_977");
+  const MeshFlow flow = flow_of(face);
+  EXPECT_EQ(flow.sum_k(), predicted_sum_k(face));
+  int jumps = 0;
+  for (const Singularity& s : flow.singularities) {
+    if (s.at == SingularitySource::Junction && s.vertex < 0) {
+      ++jumps;
+      EXPECT_EQ(s.k, -2);
+      EXPECT_GE(s.edge, 0);
+    } else {
+      EXPECT_LE(std::abs(s.k), 1);
+    }
+  }
+  EXPECT_EQ(jumps, 1);
+}
+
 TEST(SingularityCli, JsonListsSingularitiesAndTheirSum) {
   const auto result = test::run_cli("singularities " + test::shared_dir() + "/geometry/half_disk.brep --json");
   ASSERT_EQ(result.exit_code, 0) << result.err;

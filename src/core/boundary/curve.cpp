@@ -90,7 +90,7 @@ void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32
 CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
   if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
   const int span = find_span(c, t);
-  double ders[3][32] = {};
+  double ders[3][32];  // basis_derivatives fills [0..2][0..degree], all that is read
   basis_derivatives(c, span, t, ders);
   const bool rational = !c.weights.empty();
   // Homogeneous sums: A = sum N w P, W = sum N w, for value and derivatives.
@@ -108,6 +108,43 @@ CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
   const Vec2 d1 = (a[1] - w[1] * p) / w[0];
   const Vec2 d2 = (a[2] - 2.0 * w[1] * d1 - w[2] * p) / w[0];
   return {p, d1, d2};
+}
+
+// The basis functions alone at t on span i: the first column of
+// basis_derivatives' table by the same arithmetic (The NURBS Book, A2.2),
+// so a point evaluated from them is bit for bit the point evaluate gives.
+void basis_functions(const BSplineCurve& c, int i, double t, double n[32]) {
+  const int p = c.degree;
+  double left[32], right[32];
+  n[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = t - c.knots[i + 1 - j];
+    right[j] = c.knots[i + j] - t;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = n[r] / (right[r + 1] + left[j - r]);
+      n[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    n[j] = saved;
+  }
+}
+
+Vec2 evaluate_bspline_point(const BSplineCurve& c, double t) {
+  if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
+  const int span = find_span(c, t);
+  double n[32];
+  basis_functions(c, span, t, n);
+  const bool rational = !c.weights.empty();
+  Vec2 a;
+  double w = 0.0;
+  for (int j = 0; j <= c.degree; ++j) {
+    const int idx = span - c.degree + j;
+    const double wj = rational ? c.weights[idx] : 1.0;
+    a = a + n[j] * wj * c.poles[idx];
+    w += n[j] * wj;
+  }
+  return a / w;
 }
 
 }  // namespace
@@ -137,6 +174,11 @@ CurvePoint evaluate(const Curve& curve, double t) {
     CurvePoint operator()(const OtherCurve& c) const { return c.evaluate(t); }
   };
   return std::visit(Visitor{t}, curve);
+}
+
+Vec2 evaluate_point(const Curve& curve, double t) {
+  if (const auto* bs = std::get_if<BSplineCurve>(&curve)) return evaluate_bspline_point(*bs, t);
+  return evaluate(curve, t).p;
 }
 
 std::vector<double> breakpoints(const Curve& curve, double lo, double hi) {

@@ -65,6 +65,9 @@ CurveType curve_type(const Curve& curve);
 const char* curve_type_name(CurveType type);  // "line", "circle", ...
 
 CurvePoint evaluate(const Curve& curve, double t);
+// evaluate(curve, t).p, bit for bit, without the derivatives (a B-spline's
+// cost a good deal more than its point).
+Vec2 evaluate_point(const Curve& curve, double t);
 
 // Parameters inside (lo, hi) where the curve is only piecewise smooth (B-spline
 // knots); integration and sampling split there.

@@ -92,7 +92,7 @@ double integrate_edge(const BoundaryEdge& edge, const F& f, double tolerance) {
 }
 
 Vec2 evaluate_point(const BoundaryEdge& edge, double t) {
-  return evaluate(edge.curve, t).p;
+  return evaluate_point(edge.curve, t);
 }
 
 // Rough bounding-box diagonal, used to scale tolerances before anything is

@@ -590,15 +590,45 @@ class Decomposer {
     return any;
   }
 
+  // The direction an edge leaves its end vertex in, taken a tenth of the
+  // vertex's radius out (or at the edge's farthest point if it is shorter):
+  // near a junction the medial points can wobble back past the vertex, and
+  // the first step would then point the wrong way and misorder the ends.
   Vec2 end_direction(int e, bool at_start) const {
     const auto& pts = axis_.edges[e].points;
-    const Vec2 origin = at_start ? pts.front().p : pts.back().p;
     const int n = point_count(e);
-    for (int i = 1; i < n; ++i) {
-      const Vec2 q = at_start ? pts[i].p : pts[n - 1 - i].p;
-      if (distance(q, origin) > tol_) return q - origin;
+    const auto at = [&](int k) { return pts[at_start ? k : n - 1 - k].p; };
+    const int vertex = at_start ? axis_.edges[e].from : axis_.edges[e].to;
+    const double reach = std::max(tol_, 0.1 * axis_.vertices[vertex].r);
+    Vec2 farthest{1, 0};
+    double far = tol_;
+    for (int k = leaving_point(e, at_start); k < n; ++k) {
+      const double d = distance(at(k), at(0));
+      if (d > reach) return at(k) - at(0);
+      if (d > far) far = d, farthest = at(k) - at(0);
     }
-    return {1, 0};
+    return farthest;
+  }
+
+  // The point (counted from the end at_start) an edge leaves its end vertex
+  // from: the first, unless the edge overshoots its vertex along a
+  // neighbouring edge, turns right back and passes the vertex again (a
+  // medial defect), when it is the nearest point to the vertex after the
+  // turn. Only the edge's first half is searched for such a turn.
+  int leaving_point(int e, bool at_start) const {
+    const auto& pts = axis_.edges[e].points;
+    const int n = point_count(e);
+    const auto at = [&](int k) { return pts[at_start ? k : n - 1 - k].p; };
+    for (int k = 1; k + 1 < n / 2; ++k) {
+      const Vec2 in = at(k) - at(k - 1), out = at(k + 1) - at(k);
+      if (!(dot(in, out) < -0.9 * norm(in) * norm(out))) continue;
+      int nearest = k + 1;
+      for (int j = k + 2; j <= n / 2; ++j) {
+        if (distance(at(j), at(0)) < distance(at(nearest), at(0))) nearest = j;
+      }
+      return std::min(nearest + 1, n - 1);
+    }
+    return std::min(1, n - 1);
   }
 
   void sort_ends() {
@@ -920,16 +950,37 @@ class Decomposer {
   }
 
   // The split through a singularity at p between points i and i + 1 of
-  // edge e: its radii go to the two places nearest p on the runs the points
-  // there touch. Where the touches move fast along the segment (the
+  // edge e: its radii go to the two places nearest p on the runs the nearer
+  // point touches. Where the touches move fast along the segment (the
   // boundary curving towards the axis) both searches can end at one place
   // (p lies a little off the exact axis) and the split would be no cut at
-  // all: the nearer of the two medial points is taken then, with its touches.
+  // all; a point can also carry one place as both its touches (a medial
+  // defect), or the two can pass each other (see in_order). Then the other
+  // point's runs are tried, and last the nearer medial point whose two
+  // touches differ is taken, with its touches.
   MedialPoint fix_point(int e, int i, Vec2 p, double r) const {
     const auto& pts = axis_.edges[e].points;
-    const MedialPoint point{p, r, nearest_on_run(index_, pts[i].left, p), nearest_on_run(index_, pts[i].right, p)};
-    if (distance(point.left.point, point.right.point) > tol_) return point;
-    return distance(pts[i].p, p) <= distance(pts[i + 1].p, p) ? pts[i] : pts[i + 1];
+    const bool first_nearer = distance(pts[i].p, p) <= distance(pts[i + 1].p, p);
+    const int order[2] = {first_nearer ? i : i + 1, first_nearer ? i + 1 : i};
+    const auto apart = [&](const MedialPoint& m) { return distance(m.left.point, m.right.point) > tol_; };
+    // Near the end of a branch into a curvature contact the two searches can
+    // also pass each other: the radii then cross, and the block beyond the
+    // split is turned inside out. Where the touches lie close along one loop
+    // their order must stay the medial point's own.
+    const auto in_order = [&](const MedialPoint& m, const MedialPoint& own) {
+      if (m.left.loop != m.right.loop || own.left.loop != own.right.loop || m.left.loop != own.left.loop) return true;
+      const double step = signed_step(own.right, own.left);
+      if (std::abs(step) > 0.25 * static_cast<double>(face_.loops[own.left.loop].edges.size())) return true;
+      return (signed_step(m.right, m.left) > 0) == (step > 0);
+    };
+    for (const int j : order) {
+      const MedialPoint point{p, r, nearest_on_run(index_, pts[j].left, p), nearest_on_run(index_, pts[j].right, p)};
+      if (apart(point) && in_order(point, pts[j])) return point;
+    }
+    for (const int j : order) {
+      if (apart(pts[j])) return pts[j];
+    }
+    return pts[order[0]];
   }
 
   // ------------------------------------------------------------ exploring
@@ -1565,13 +1616,16 @@ class Decomposer {
   // The touching place on one side (right: forwards) at an end of edge e,
   // continuing the edge's own touches: the end point carries its vertex's,
   // which at a junction touching several loops need not continue them (the
-  // mesh flow follows the neighbour's touches there too).
+  // mesh flow follows the neighbour's touches there too). The neighbour is
+  // the point the edge leaves from (leaving_point): an overshoot's points
+  // have their sides swapped.
   BoundaryPlace end_place(int e, bool at_start, bool right) const {
     const auto& pts = axis_.edges[e].points;
     const MedialPoint& end = at_start ? pts.front() : pts.back();
     const BoundaryPlace& own = right ? end.right : end.left;
     if (pts.size() < 3) return own;
-    const MedialPoint& next = at_start ? pts[1] : pts[pts.size() - 2];
+    const int leaving = leaving_point(e, at_start);
+    const MedialPoint& next = at_start ? pts[leaving] : pts[pts.size() - 1 - leaving];
     const BoundaryPlace& neighbour = right ? next.right : next.left;
     // A touch on another loop is surely the junction's, not the edge's; on
     // the same loop, a jump of more than twice the medial step is taken as
@@ -2101,7 +2155,7 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_))
+        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_) && !cusp_to_polygon(o, b, d))
           throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
@@ -2115,6 +2169,42 @@ class Decomposer {
       throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // A block of convex corners and cusps (corners of no element: a sharp
+  // corner the flow gives 0, or the bend of a split near the end of a
+  // branch) with no singularity, which no typing submaps without a convex
+  // corner where its outline runs straight (a sharp triangle): each cusp
+  // gets one element, and the block becomes the logically convex polygon of
+  // its m corners round a singularity of k = m - 4 of its own (a triangle's
+  // three quads round a k = -1), at its centroid. Returns false when the
+  // block is not such a block.
+  bool cusp_to_polygon(const Outline& o, Block& b, Decomposition& d) const {
+    const int m = static_cast<int>(b.corners.size());
+    const auto cusp = [](const BlockCorner& c) { return c.type == 0; };
+    if (m < 3 || m > 6 || !simple(o) || std::none_of(b.corners.begin(), b.corners.end(), cusp) ||
+        std::any_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type > 1; }))
+      return false;
+    Vec2 centroid{0, 0};
+    double area = 0.0;
+    for (std::size_t i = 0; i < b.outline.size(); ++i) {
+      const Vec2 p = b.outline[i], q = b.outline[(i + 1) % b.outline.size()];
+      const double a = cross(p, q);
+      area += a;
+      centroid = centroid + (p + q) * a;
+    }
+    if (!(std::abs(area) > 0.0)) return false;
+    centroid = centroid / (3.0 * area);
+    if (!inside_polygon(b.outline, centroid)) return false;
+    for (BlockCorner& c : b.corners) c.type = 1;
+    b.kind = BlockKind::Polygon;
+    if (m != 4) {
+      b.singularity = static_cast<int>(d.singularities.size());
+      d.singularities.push_back({centroid, m - 4, false, {}});
+    }
+    d.notes.push_back("a block with a cusp that no typing submaps became a " + std::to_string(m) +
+                      "-sided polygon (its cusp one element)");
+    return true;
   }
 
   // Whether p lies inside a closed outline or on it. Where the medial axis

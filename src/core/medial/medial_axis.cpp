@@ -1,7 +1,9 @@
 #include "medial/medial_axis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -76,8 +78,22 @@ class Builder {
 
   double size() const { return face_.size; }
 
-  // The exact boundary place a site stands for, nearest to m.
+  // The exact boundary place a site stands for, nearest to m. Asked again
+  // and again for one site and point (a node's sites once per edge there
+  // and once more for its medial point, a junction's once per nearby
+  // Voronoi vertex): the last few answers are kept.
   BoundaryPlace place_of(const Site& site, Vec2 m) const {
+    for (const PlaceMemo& memo : place_memo_) {
+      if (memo.segment == site.segment && memo.part == site.part && std::memcmp(&memo.m, &m, sizeof m) == 0)
+        return memo.place;
+    }
+    const BoundaryPlace place = search_place_of(site, m);
+    place_memo_[place_memo_next_] = {site.segment, site.part, m, place};
+    place_memo_next_ = (place_memo_next_ + 1) % place_memo_.size();
+    return place;
+  }
+
+  BoundaryPlace search_place_of(const Site& site, Vec2 m) const {
     const BoundarySegment& s = graph_.segments[site.segment];
     double t = s.t0;
     if (site.part == Site::kEnd) {
@@ -790,7 +806,16 @@ class Builder {
     }
   }
 
+  struct PlaceMemo {
+    int segment = -1;  // none yet
+    Site::Part part = Site::kSegment;
+    Vec2 m;
+    BoundaryPlace place;
+  };
+
   const FaceModel& face_;
+  mutable std::array<PlaceMemo, 8> place_memo_;
+  mutable std::size_t place_memo_next_ = 0;
   BoundaryIndex index_;
   double chord_tolerance_;
   VoronoiGraph graph_;
@@ -843,18 +868,31 @@ std::string topology_problem(const MedialAxis& axis, int holes) {
   return "";
 }
 
+// The nearest boundary point to every medial point: the vertices, then the
+// edges' points in order. Both checks below need them, and each costs a
+// nearest-point search on the exact curves.
+std::vector<Vec2> nearest_points(const NearestBoundary& boundary, const MedialAxis& axis) {
+  std::vector<Vec2> nearest;
+  for (const MedialVertex& v : axis.vertices) nearest.push_back(boundary.nearest(v.p).point);
+  for (const MedialEdge& e : axis.edges) {
+    for (const MedialPoint& p : e.points) nearest.push_back(boundary.nearest(p.p).point);
+  }
+  return nearest;
+}
+
 // The largest difference between a medial point's radius and its distance to
 // the boundary or to the places it touches.
-double radius_error(const NearestBoundary& boundary, const MedialAxis& axis) {
+double radius_error(const std::vector<Vec2>& nearest, const MedialAxis& axis) {
   double worst = 0.0;
   const auto off = [&](Vec2 p, double r, Vec2 q) { worst = std::max(worst, std::abs(r - distance(q, p))); };
+  std::size_t i = 0;
   for (const MedialVertex& v : axis.vertices) {
-    off(v.p, v.r, boundary.nearest(v.p).point);
+    off(v.p, v.r, nearest[i++]);
     for (const BoundaryPlace& t : v.touches) off(v.p, v.r, t.point);
   }
   for (const MedialEdge& e : axis.edges) {
     for (const MedialPoint& p : e.points) {
-      off(p.p, p.r, boundary.nearest(p.p).point);
+      off(p.p, p.r, nearest[i++]);
       off(p.p, p.r, p.left.point);
       off(p.p, p.r, p.right.point);
     }
@@ -862,9 +900,10 @@ double radius_error(const NearestBoundary& boundary, const MedialAxis& axis) {
   return worst;
 }
 
-double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
+double violation(const std::vector<Vec2>& nearest, const MedialAxis& axis) {
   double worst = 0.0;
-  const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(boundary.nearest(p).point, p)); };
+  std::size_t i = 0;
+  const auto check = [&](Vec2 p, double r) { worst = std::max(worst, r - distance(nearest[i++], p)); };
   for (const MedialVertex& v : axis.vertices) check(v.p, v.r);
   for (const MedialEdge& e : axis.edges) {
     for (const MedialPoint& p : e.points) check(p.p, p.r);
@@ -872,11 +911,51 @@ double violation(const NearestBoundary& boundary, const MedialAxis& axis) {
   return worst;
 }
 
+// An edge point's feet come from nearest-point searches started at its
+// Voronoi sites' chords, which on a long wavy curve may settle in a local
+// minimum of the distance (a foot on a bump while the disc reaches into the
+// next one, or both feet on one bump): then the global nearest place is
+// nearer than the radius. Such a point is placed again on the bisector of
+// the global nearest place and one of its feet (whichever gives a point whose
+// disc touches the boundary, nearest to where it was). nearest is updated.
+void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& boundary, double tolerance, MedialAxis& axis,
+                        std::vector<Vec2>& nearest) {
+  const double same = kSamePlace * index.face().size;
+  const auto error = [](const MedialPoint& q, Vec2 near) {
+    return std::max({std::abs(q.r - distance(near, q.p)), std::abs(q.r - distance(q.left.point, q.p)),
+                     std::abs(q.r - distance(q.right.point, q.p))});
+  };
+  std::size_t i = axis.vertices.size();
+  for (MedialEdge& e : axis.edges) {
+    for (std::size_t k = 0; k < e.points.size(); ++k, ++i) {
+      MedialPoint& q = e.points[k];
+      double worst = error(q, nearest[i]);
+      if (worst <= tolerance) continue;
+      const BoundaryPlace global = boundary.nearest(q.p);
+      for (const BoundaryPlace& foot : {q.left, q.right}) {
+        if (same_place(foot, global, same)) continue;
+        const Bisected b = bisect(index, q.p, global, foot);
+        if (!b.converged || same_place(b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
+          continue;
+        const BoundaryPlace at = boundary.nearest(b.p);
+        MedialPoint moved{b.p, b.r, b.a, b.b};
+        const double moved_error = error(moved, at.point);
+        if (moved_error >= worst) continue;
+        // Left and right of the direction of travel, as orient_touches names them.
+        const Vec2 dir = e.points[std::min(k + 1, e.points.size() - 1)].p - e.points[k > 0 ? k - 1 : 0].p;
+        if (cross(dir, moved.left.point - moved.p) < cross(dir, moved.right.point - moved.p))
+          std::swap(moved.left, moved.right);
+        q = moved, nearest[i] = at.point, worst = moved_error;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
   const BoundaryIndex index(face);
-  return violation(NearestBoundary(index), axis);
+  return violation(nearest_points(NearestBoundary(index), axis), axis);
 }
 
 MedialAxis compute_medial_axis(const FaceModel& face) {
@@ -884,18 +963,23 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
   const BoundaryIndex index(face);
   const NearestBoundary boundary(index);  // built once for every check below
   MedialAxis best = Builder(face, 1.0).build();
-  double best_violation = violation(boundary, best);
+  std::vector<Vec2> best_nearest = nearest_points(boundary, best);
+  double best_violation = violation(best_nearest, best);
   double fineness = 1.0;
   for (int i = 0; i < kMaxRefinements && best_violation > tolerance; ++i) {
     fineness *= kRefinement;
     MedialAxis finer = Builder(face, fineness).build();
-    const double finer_violation = violation(boundary, finer);
-    if (finer_violation < best_violation) best = std::move(finer), best_violation = finer_violation;
+    std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
+    const double finer_violation = violation(finer_nearest, finer);
+    if (finer_violation < best_violation) {
+      best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
+    }
   }
+  repair_edge_points(index, boundary, tolerance, best, best_nearest);
   // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
   // both ways: no boundary inside a disc, and every disc touching it.
   const double allowed = 1e-6 * face.size + face.tolerance;
-  if (const double error = radius_error(boundary, best); error > allowed) {
+  if (const double error = radius_error(best_nearest, best); error > allowed) {
     std::ostringstream check;
     check << "medial axis: a medial point's distance to the boundary or to a place it touches is " << error
           << " off its radius (allowed " << allowed << ")";

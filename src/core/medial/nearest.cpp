@@ -1,6 +1,7 @@
 #include "medial/nearest.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -68,8 +69,9 @@ double bracketed_nearest(const BoundaryEdge& edge, double t, Vec2 m) {
   return t;
 }
 
-// Nearest parameter of a single edge to m, from the guess t.
-double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
+// Nearest parameter of a single edge to m, from the guess t; ends are the
+// curve's points at lo(edge) and hi(edge).
+double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& ends, double t, Vec2 m) {
   const double a = lo(edge), b = hi(edge);
   if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
     return std::clamp(dot(m - line->origin, line->direction), a, b);
@@ -86,9 +88,9 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
   }
   // General curve: Newton's method on g(t) = (C(t) - m) . C'(t) = 0, kept in range.
   t = std::clamp(t, a, b);
+  CurvePoint c = evaluate(edge.curve, t);  // the curve at t (once settled, its point only)
   bool settled = false;
   for (int i = 0; i < 50 && !settled; ++i) {
-    const CurvePoint c = evaluate(edge.curve, t);
     const double g = dot(c.p - m, c.d1);
     const double h = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
     double next = h > 0 ? t - g / h : t - g / std::max(dot(c.d1, c.d1), 1e-300);
@@ -97,19 +99,31 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
     // a centre of curvature) or the curve bends back, a full Newton step can
     // jump to another part of the curve; shorten it until it goes downhill.
     const double here = dot(c.p - m, c.p - m);
-    for (int k = 0; k < 60; ++k) {
-      const Vec2 q = evaluate(edge.curve, next).p;
-      if (dot(q - m, q - m) <= here) break;
-      next = t + 0.5 * (next - t);
+    Vec2 q = evaluate_point(edge.curve, next);
+    for (int k = 0; k < 60 && !(dot(q - m, q - m) <= here); ++k) {  // NaN halves on too
+      // Halving a step of one unit in the last place can round back to the
+      // same parameter: then every further try is this same point again.
+      const double shorter = t + 0.5 * (next - t);
+      if (shorter == next) break;
+      next = shorter;
+      q = next == t ? c.p : evaluate_point(edge.curve, next);
     }
     settled = std::abs(next - t) <= 1e-15 * (b - a);
+    if (settled) {
+      c.p = q;  // past the search only the point is wanted, and q is it
+    } else if (next != t) {
+      c = evaluate(edge.curve, next);
+    }
     t = next;
   }
-  if (!settled) t = bracketed_nearest(edge, t, m);
+  if (!settled) {
+    t = bracketed_nearest(edge, t, m);
+    c = evaluate(edge.curve, t);
+  }
   // Newton may settle on an end where the other end is nearer.
-  const double dt = distance(evaluate(edge.curve, t).p, m);
-  if (distance(evaluate(edge.curve, a).p, m) < dt) t = a;
-  if (distance(evaluate(edge.curve, b).p, m) < std::min(dt, distance(evaluate(edge.curve, t).p, m))) t = b;
+  double dt = distance(c.p, m);
+  if (const double da = distance(ends[0], m); da < dt) t = a, dt = da;
+  if (distance(ends[1], m) < dt) t = b;
   return t;
 }
 
@@ -118,6 +132,11 @@ double nearest_parameter(const BoundaryEdge& edge, double t, Vec2 m) {
 BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
   for (const Loop& loop : face.loops) corner_.emplace_back(loop.edges.size(), false);
   reflex_ = corner_;
+  for (const Loop& loop : face.loops) {
+    curve_ends_.emplace_back();
+    for (const BoundaryEdge& e : loop.edges)
+      curve_ends_.back().push_back({evaluate_point(e.curve, lo(e)), evaluate_point(e.curve, hi(e))});
+  }
   for (const Corner& c : face.corners) {
     corner_[c.loop][c.vertex] = true;
     reflex_[c.loop][c.vertex] = c.angle > kPi;
@@ -126,7 +145,7 @@ BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
 
 BoundaryPlace BoundaryIndex::place(int loop, int e, double t) const {
   const BoundaryEdge& edge = face_.loops[loop].edges[e];
-  BoundaryPlace p{loop, e, t, -1, evaluate(edge.curve, t).p};
+  BoundaryPlace p{loop, e, t, -1, evaluate_point(edge.curve, t)};
   // At a corner the place is the snapped vertex (neighbouring curves may end
   // a file's tolerance apart); elsewhere it is the curve's own point.
   const double tol = 1e-12 * std::max(1.0, std::abs(edge.t_end - edge.t_start));
@@ -171,7 +190,7 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
   const int count = index.edge_count(start.loop);
   for (int step = 0; step <= count; ++step) {
     const BoundaryEdge& edge = index.edge(start.loop, e);
-    t = nearest_parameter(edge, t, m);
+    t = nearest_parameter(edge, index.curve_ends(start.loop, e), t, m);
     BoundaryPlace here = index.place(start.loop, e, t);
     const bool at_start = std::abs(t - edge.t_start) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
     const bool at_end = std::abs(t - edge.t_end) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
@@ -179,7 +198,8 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
     // At a tangent join: carry on along the neighbouring edge unless it leads away.
     const int next = at_end ? (e + 1) % count : (e + count - 1) % count;
     const BoundaryEdge& neighbour = index.edge(start.loop, next);
-    const double nt = nearest_parameter(neighbour, at_end ? neighbour.t_start : neighbour.t_end, m);
+    const double nt = nearest_parameter(neighbour, index.curve_ends(start.loop, next),
+                                        at_end ? neighbour.t_start : neighbour.t_end, m);
     const BoundaryPlace there = index.place(start.loop, next, nt);
     if (distance(there.point, m) >= distance(here.point, m) * (1 - 1e-14)) return here;
     e = next;

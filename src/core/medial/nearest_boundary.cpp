@@ -1,75 +1,209 @@
 #include "medial/nearest_boundary.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/geometries/point.hpp>
-#include <boost/geometry/index/rtree.hpp>
+#include <array>
 #include <cmath>
-#include <iterator>
 #include <utility>
 #include <vector>
-
 namespace mm {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using RPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-
 // Points within 1e-3 of the face size of the curves and at most 1e-2 apart
-// along straight stretches, each with its boundary place.
+// along straight stretches, each with its boundary place, binned in a grid
+// of about as many square cells as points (a plain grid: far cheaper to
+// search for a few hundred points than an R-tree).
 struct NearestBoundary::Samples {
-  bgi::rtree<std::pair<RPoint, BoundaryPlace>, bgi::quadratic<16>> tree;
+  std::vector<BoundaryPlace> places;
+  Vec2 origin;
+  double cell = 1.0;
+  int nx = 1, ny = 1;
+  std::vector<int> first;  // cell c holds places[order[first[c] .. first[c + 1])]
+  std::vector<int> order;
+
+  std::pair<int, int> cell_of(Vec2 p) const {
+    return {std::clamp(static_cast<int>(std::floor((p.x - origin.x) / cell)), 0, nx - 1),
+            std::clamp(static_cast<int>(std::floor((p.y - origin.y) / cell)), 0, ny - 1)};
+  }
+
+  void build() {
+    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (const BoundaryPlace& b : places) {
+      lo = {std::min(lo.x, b.point.x), std::min(lo.y, b.point.y)};
+      hi = {std::max(hi.x, b.point.x), std::max(hi.y, b.point.y)};
+    }
+    origin = lo;
+    const double w = std::max(hi.x - lo.x, 1e-300), h = std::max(hi.y - lo.y, 1e-300);
+    cell = std::max(std::sqrt(w * h / static_cast<double>(std::max<std::size_t>(places.size(), 1))),
+                    std::max(w, h) / 1024);
+    nx = std::max(1, static_cast<int>(std::ceil(w / cell)));
+    ny = std::max(1, static_cast<int>(std::ceil(h / cell)));
+    first.assign(static_cast<std::size_t>(nx) * ny + 1, 0);
+    std::vector<int> cell_index(places.size());
+    for (std::size_t i = 0; i < places.size(); ++i) {
+      const auto [cx, cy] = cell_of(places[i].point);
+      cell_index[i] = cy * nx + cx;
+      ++first[cell_index[i] + 1];
+    }
+    for (std::size_t c = 0; c + 1 < first.size(); ++c) first[c + 1] += first[c];
+    order.resize(places.size());
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < places.size(); ++i) order[fill[cell_index[i]]++] = static_cast<int>(i);
+  }
+
+  // The k samples nearest p, nearest first (ties in no particular order):
+  // rings of cells outwards until the next ring lies beyond the k-th.
+  int nearest(Vec2 p, int k, std::array<std::pair<double, int>, 8>& found) const {
+    int count = 0;
+    const auto [cx, cy] = cell_of(p);
+    const auto visit = [&](int x, int y) {
+      const int c = y * nx + x;
+      for (int j = first[c]; j < first[c + 1]; ++j) {
+        const double d = distance(places[order[j]].point, p);
+        if (count == k && d >= found[k - 1].first) continue;
+        int at = count < k ? count++ : k - 1;
+        while (at > 0 && found[at - 1].first > d) found[at] = found[at - 1], --at;
+        found[at] = {d, order[j]};
+      }
+    };
+    const int rings = std::max({cx, nx - 1 - cx, cy, ny - 1 - cy});
+    for (int r = 0; r <= rings; ++r) {
+      // Every cell of ring r is at least (r - 1) cells from p, inside the grid or out.
+      if (count == k && (r - 1) * cell > found[k - 1].first) break;
+      for (int x = cx - r; x <= cx + r; ++x) {
+        if (x < 0 || x >= nx) continue;
+        if (cy - r >= 0) visit(x, cy - r);
+        if (r > 0 && cy + r < ny) visit(x, cy + r);
+      }
+      for (int y = cy - r + 1; y <= cy + r - 1; ++y) {
+        if (y < 0 || y >= ny) continue;
+        if (cx - r >= 0) visit(cx - r, y);
+        if (cx + r < nx) visit(cx + r, y);
+      }
+    }
+    return count;
+  }
+
+  // Calls f(sample index, distance) for every sample at a distance from p in
+  // [low, high]: per row of cells, only the columns reaching into that ring
+  // (a cell to spare each way), not the whole square round the outer circle.
+  template <class F>
+  void within(Vec2 p, double low, double high, F f) const {
+    const double low2 = low * low, high2 = high * high;
+    const auto visit = [&](int y, int x0, int x1) {
+      for (int x = std::max(x0, 0); x <= std::min(x1, nx - 1); ++x) {
+        const int c = y * nx + x;
+        for (int j = first[c]; j < first[c + 1]; ++j) {
+          const Vec2 v = places[order[j]].point - p;
+          const double d2 = dot(v, v);
+          if (d2 >= low2 && d2 <= high2) f(order[j], std::sqrt(d2));
+        }
+      }
+    };
+    const int y0 = std::max(0, static_cast<int>(std::floor((p.y - high - origin.y) / cell)) - 1);
+    const int y1 = std::min(ny - 1, static_cast<int>(std::floor((p.y + high - origin.y) / cell)) + 1);
+    for (int y = y0; y <= y1; ++y) {
+      const double cy0 = origin.y + y * cell, cy1 = cy0 + cell;
+      const double near_y = std::max({cy0 - p.y, p.y - cy1, 0.0}), far_y = std::max(p.y - cy0, cy1 - p.y);
+      if (near_y > high) continue;
+      const double outer = std::sqrt(high * high - near_y * near_y);
+      const int x0 = static_cast<int>(std::floor((p.x - outer - origin.x) / cell)) - 1;
+      const int x1 = static_cast<int>(std::floor((p.x + outer - origin.x) / cell)) + 1;
+      // Columns wholly inside the inner circle over this row hold no sample of the ring.
+      const double inner = far_y < low ? std::sqrt(low * low - far_y * far_y) : -1.0;
+      const int i0 = inner > 0 ? static_cast<int>(std::floor((p.x - inner - origin.x) / cell)) + 2 : x1 + 1;
+      const int i1 = inner > 0 ? static_cast<int>(std::floor((p.x + inner - origin.x) / cell)) - 2 : x1;
+      if (i0 > i1) {
+        visit(y, x0, x1);
+      } else {
+        visit(y, x0, i0 - 1);
+        visit(y, i1 + 1, x1);
+      }
+    }
+  }
 };
 
 NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), samples_(new Samples) {
   const FaceModel& face = index.face();
-  const double spacing = 1e-2 * face.size;
-  std::vector<std::pair<RPoint, BoundaryPlace>> points;
+  const double spacing = spacing_ = 1e-2 * face.size;
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
       const std::vector<double> params = sample_edge_parameters(e, 1e-3 * face.size);
       for (std::size_t k = 0; k + 1 < params.size(); ++k) {
-        const Vec2 a = evaluate(e.curve, params[k]).p, b = evaluate(e.curve, params[k + 1]).p;
+        const Vec2 a = evaluate_point(e.curve, params[k]), b = evaluate_point(e.curve, params[k + 1]);
         const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing)));
         for (int s = 0; s < steps; ++s) {
           const double t = params[k] + (params[k + 1] - params[k]) * s / steps;
-          const BoundaryPlace place = index.place(static_cast<int>(li), static_cast<int>(ei), t);
-          points.push_back({RPoint(place.point.x, place.point.y), place});
+          samples_->places.push_back(index.place(static_cast<int>(li), static_cast<int>(ei), t));
         }
       }
     }
   }
-  samples_->tree = decltype(samples_->tree)(points.begin(), points.end());
+  samples_->build();
 }
 
 NearestBoundary::~NearestBoundary() = default;
 
+namespace {
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double u = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
+  return distance(p, a + u * d);
+}
+
+}  // namespace
+
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
-  std::vector<std::pair<RPoint, BoundaryPlace>> found;
-  samples_->tree.query(bgi::nearest(RPoint(p.x, p.y), 6), std::back_inserter(found));
-  // Nearest first (the R-tree hands them over in no order): the stretch of
-  // the nearest sample is always refined from that sample itself, not from
-  // a farther one of its stretch that may lie across a dip or a seam.
-  std::sort(found.begin(), found.end(),
-            [&](const auto& a, const auto& b) { return distance(a.second.point, p) < distance(b.second.point, p); });
-  // Refine once per stretch of boundary: samples near a sample already
-  // refined lead to the same place, but one edge may pass p twice (a loop
-  // that is a single closed curve), each time with a nearest point of its own.
+  std::array<std::pair<double, int>, 8> found;
+  const int count = samples_->nearest(p, 6, found);
+  // Refine once per stretch of boundary, nearest sample first: the stretch
+  // of the nearest sample is always refined from that sample itself, not
+  // from a farther one of its stretch that may lie across a dip or a seam.
+  // Samples near a sample already refined lead to the same place, but one
+  // edge may pass p twice (a loop that is a single closed curve), each time
+  // with a nearest point of its own.
   const double same_stretch = 2e-2 * index_.face().size;
   BoundaryPlace best;
   double best_distance = 1e300;
   std::vector<BoundaryPlace> refined;
-  for (const auto& [point, place] : found) {
-    const double d = distance(place.point, p);
-    if (d < best_distance) best = place, best_distance = d;
-    const auto near = [&](const BoundaryPlace& r) {
+  const auto stretch_refined = [&](const BoundaryPlace& place) {
+    return std::any_of(refined.begin(), refined.end(), [&](const BoundaryPlace& r) {
       return r.loop == place.loop && r.edge == place.edge && distance(r.point, place.point) <= same_stretch;
-    };
-    if (std::any_of(refined.begin(), refined.end(), near)) continue;
+    });
+  };
+  const auto refine = [&](int sample, double d) {
+    const BoundaryPlace& place = samples_->places[sample];
+    if (d < best_distance) best = place, best_distance = d;
+    if (stretch_refined(place)) return;
     refined.push_back(place);
     const BoundaryPlace exact = nearest_on_run(index_, place, p);
     if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
+  };
+  for (int i = 0; i < count; ++i) refine(found[i].second, found[i].first);
+  // The nearest point of a stretch lies within half a sample spacing (and
+  // the curves' sag from the samples' chords) of one of its samples, which
+  // may be farther than all of the six nearest samples when another stretch
+  // is almost as near (a hole's edge a hair farther than the outline):
+  // every stretch with a sample that close to the best distance is refined
+  // (samples nearer than the sixth nearest are among the six already), if
+  // the boundary between the sample and a neighbour may come nearer than the
+  // best yet: it strays from their chord by at most the sampling's tolerance.
+  const double sag = 1e-3 * index_.face().size;
+  const double reach = best_distance + 0.5 * spacing_ + sag;
+  if (count == 6 && found[5].first < reach) {
+    samples_->within(p, found[5].first, reach, [&](int sample, double d) {
+      const BoundaryPlace& here = samples_->places[sample];
+      if (stretch_refined(here)) return;
+      double chords = d;
+      for (int other : {sample - 1, sample + 1}) {
+        if (other < 0 || other >= static_cast<int>(samples_->places.size())) continue;
+        const BoundaryPlace& q = samples_->places[other];
+        if (q.loop == here.loop && q.edge == here.edge)
+          chords = std::min(chords, distance_to_segment(p, here.point, q.point));
+      }
+      if (chords - sag < best_distance) refine(sample, d);
+    });
   }
   return best;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The exact nearest boundary place to any point, for checking a medial axis
-// (and later stages): nearest samples from an R-tree, refined on the curves.
+// (and later stages): nearest samples from a grid, refined on the curves.
 #include <memory>
 
 #include "medial/nearest.hpp"
@@ -17,6 +17,7 @@ class NearestBoundary {
   struct Samples;
   const BoundaryIndex& index_;
   std::unique_ptr<Samples> samples_;
+  double spacing_ = 0.0;  // the largest gap between samples along straight stretches
 };
 
 }  // namespace mm

@@ -80,7 +80,7 @@ std::vector<double> chord_parameters(const FaceModel& face, int loop, int edge, 
   const int count = static_cast<int>(face.loops[loop].edges.size());
   const auto chord_angle = [&](double t_end, double t_other) {
     const Vec2 tangent = edge_tangent(e, t_end);
-    const Vec2 chord = evaluate(e.curve, t_other).p - evaluate(e.curve, t_end).p;
+    const Vec2 chord = evaluate_point(e.curve, t_other) - evaluate_point(e.curve, t_end);
     return std::abs(signed_angle(t_end == e.t_start ? tangent : -1.0 * tangent, chord));
   };
   const double start_limit = corner_slack[edge], end_limit = corner_slack[(edge + 1) % count];

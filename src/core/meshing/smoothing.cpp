@@ -222,15 +222,20 @@ class Smoother {
   }
 
   // Whether putting the star's node at p is better() than `current`: the
-  // same values as local_quality, without finishing the sum once one quad
-  // falls below current.min (then it is not).
+  // same values as local_quality, without going on once one corner falls
+  // below current.min (then it is not). Most candidates of the searches fail
+  // so, most often at the moved corner itself, which is valued first.
   template <bool kScaled>
   bool improves(std::vector<StarQuad>& star, Vec2 p, const LocalQuality& current, LocalQuality& candidate) const {
     candidate = LocalQuality{std::numeric_limits<double>::infinity(), 0.0};
     for (StarQuad& s : star) {
       s.v[0] = p;
-      const double value = std::min(std::min(s.opposite, corner_measure<kScaled>(s.v, 0)),
-                                    std::min(corner_measure<kScaled>(s.v, 1), corner_measure<kScaled>(s.v, 3)));
+      const double at = corner_measure<kScaled>(s.v, 0);
+      if (at < current.min) return false;
+      const double next = corner_measure<kScaled>(s.v, 1);
+      if (next < current.min) return false;
+      const double prev = corner_measure<kScaled>(s.v, 3);
+      const double value = std::min(std::min(s.opposite, at), std::min(next, prev));
       if (value < current.min) return false;
       candidate.min = std::min(candidate.min, value);
       candidate.mean += value;

@@ -14,7 +14,8 @@ namespace mm {
 enum class SingularitySource {
   FlowSwitch,        // n changes along a medial edge (adjusted medial angle pi/4 or 3pi/4)
   CornerSwitch,      // the cross arm used at a concave corner changes along an edge
-  Junction,          // a medial vertex touching three or more places
+  Junction,          // a medial vertex touching three or more places, or (edge >= 0) a touch jump
+                     // where a pruned branch left the edge (docs/flux_balance.md section 3)
   Flare,             // the end of the axis at a convex corner
   FiniteContact,     // the centre of a touched circular arc (the paper's eq. 7)
   CurvatureContact,  // an end where the disc's curvature matches the boundary's
@@ -60,8 +61,10 @@ struct MeshFlow {
 // touching point is a concave corner (the radius turned onto the nearest arm
 // of the corner's cross), and the singularities from the flux balance at the
 // only places it can be unbalanced: the switch points (located by bisection
-// on the exact medial axis) and the medial vertices. Throws SelfCheckError
-// if the sum of k is not predicted_sum_k(face) or a flow switch has |k| > 1.
+// on the exact medial axis) and the medial vertices; docs/flux_balance.md
+// proves each rule. Throws SelfCheckError if the sum of k is not
+// predicted_sum_k(face), a flow switch has |k| > 1, or the axis folds back
+// (touches running backwards or jumping on both sides of an edge).
 MeshFlow compute_mesh_flow(const FaceModel& face, const MedialAxis& axis);
 
 }  // namespace mm
