@@ -157,7 +157,7 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
   // Vertex nodes sit within the face's tolerance of the snapped vertices its area runs through.
   int edges = 0;
   for (const Loop& loop : face.loops) edges += static_cast<int>(loop.edges.size());
-  const double slack = std::max(face.tolerance, 1e-5 * face.size);
+  const double slack = std::max(10.0 * face.tolerance, 1e-5 * face.size);
   if (std::abs(area - (face.area - cut_off)) > 1e-9 * face.area + 2.0 * edges * slack * slack) {
     problem("the elements cover " + std::to_string(area) + ", the polygon of the boundary nodes " +
             std::to_string(face.area - cut_off) + " (the face " + std::to_string(face.area) + ")");
