@@ -275,8 +275,14 @@ class BlockMesher {
       SmoothingOptions smoothing;
       smoothing.max_boundary_turn = kMaxTurnPerInterval;
       // A piece of boundary shared with another face keeps the nodes both have.
-      for (const Segment& s : segments_)
+      // Nor do the loop's vertices move: their two intervals lie on two edges
+      // (or either side of a closed curve's seam).
+      for (const Segment& s : segments_) {
+        if (s.split >= 0) continue;
         if (s.shared) smoothing.fixed.insert(smoothing.fixed.end(), s.nodes.begin(), s.nodes.end());
+        if (on_loop_vertex(s, 0)) smoothing.fixed.push_back(s.nodes.front());
+        if (on_loop_vertex(s, static_cast<int>(s.nodes.size()) - 1)) smoothing.fixed.push_back(s.nodes.back());
+      }
       // Unless an element stays folded: then boundary nodes must give way
       // (a block's few intervals on a hole bunched where its sides meet).
       if (smooth_mesh(face_, mesh_, smoothing).inverted_after > 0) {
@@ -681,12 +687,20 @@ class BlockMesher {
     return outline;
   }
 
-  // The parameter of a boundary segment's node k now (smoothing slides nodes
-  // along their edges; the segment's ends are vertices that stay put).
+  // Whether a boundary segment's node k lies on a vertex of its loop (the
+  // segment's parameter there is the edge's own end).
+  bool on_loop_vertex(const Segment& s, int k) const {
+    const BoundaryEdge& edge = edge_of(s);
+    return s.params[k] == edge.t_start || s.params[k] == edge.t_end;
+  }
+
+  // The parameter of a boundary segment's node k now: smoothing slides nodes
+  // along their edges, a split's end on an edge too, but not the nodes on
+  // the loop's vertices (whose place may name the other edge, or the other
+  // end of a closed curve's period).
   double current_param(const Segment& s, int k) const {
     const NodePlace& place = mesh_.places[s.nodes[k]];
-    if (k > 0 && k + 1 < static_cast<int>(s.nodes.size()) && place.loop == s.loop && place.edge == s.edge)
-      return place.t;
+    if (place.loop == s.loop && place.edge == s.edge && !on_loop_vertex(s, k)) return place.t;
     return s.params[k];
   }
 
