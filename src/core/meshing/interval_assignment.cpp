@@ -582,20 +582,56 @@ IntervalAssignment read_answer(const BuiltModel& built, const std::vector<double
   return a;
 }
 
-// Submapped blocks have no template parameters: when every segment at its
-// nearest count (the fewer on a tie, at least min_count) meets the
+// The midpoint equations L_i = c_{i-1} + c_{i+1} solved for twice c_i
+// (m = 3 and 5: the sum of all c less the sides covering the others; m = 6:
+// two triangles, odd c on even sides and even c on odd ones).
+std::vector<long> twice_midpoint_parameters(const std::vector<long>& sides) {
+  const size_t m = sides.size();
+  long total = 0;
+  for (long l : sides) total += l;
+  std::vector<long> twice(m);
+  for (size_t i = 0; i < m; ++i) {
+    if (m == 3) twice[i] = total - 2 * sides[i];
+    if (m == 5) twice[i] = total - 2 * (sides[(i + 2) % 5] + sides[(i + 3) % 5]);
+    if (m == 6) {
+      twice[i] = -2 * sides[(i + 3) % 6];
+      for (size_t k = (i + 1) % 2; k < 6; k += 2) twice[i] += sides[k];
+    }
+  }
+  return twice;
+}
+
+// Submapped blocks have no template parameters and a midpoint block's
+// follow from its sides: when every segment at its nearest count (the fewer
+// on a tie, at least min_count) gives whole parameters >= 1 and meets the
 // equations, and the facing and slit rows at no cost, that is the optimum,
 // found without Clp (whose first call in a process also pays for loading it).
 // Empty values when it is not.
 Model::Outcome direct_outcome(const IntervalProblem& problem, const BuiltModel& built) {
   Model::Outcome outcome;
   for (const BlockShape& block : problem.blocks)
-    if (block.kind != BlockTemplate::Submap) return outcome;
+    if (block.kind != BlockTemplate::Submap && block.kind != BlockTemplate::Midpoint) return outcome;
   std::vector<double> x(built.model.columns(), 0.0);
+  std::vector<long> counts(problem.segments.size());
   for (size_t s = 0; s < problem.segments.size(); ++s) {
     const IntervalSegment& seg = problem.segments[s];
-    const double base = std::floor(seg.goal);
-    x[built.count_columns[s]] = std::max<double>(seg.min_count, seg.goal - base > 0.5 ? base + 1.0 : base);
+    const long base = static_cast<long>(std::floor(seg.goal));
+    counts[s] = std::max<long>(seg.min_count, seg.goal - static_cast<double>(base) > 0.5 ? base + 1 : base);
+    x[built.count_columns[s]] = static_cast<double>(counts[s]);
+  }
+  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+    if (problem.blocks[b].kind != BlockTemplate::Midpoint) continue;
+    std::vector<long> sides;
+    for (const std::vector<int>& segs : problem.blocks[b].side_segments) {
+      long total = 0;
+      for (int s : segs) total += counts[s];
+      sides.push_back(total);
+    }
+    const std::vector<long> twice = twice_midpoint_parameters(sides);
+    for (size_t i = 0; i < twice.size(); ++i) {
+      if (twice[i] < 2 || twice[i] % 2 != 0) return outcome;
+      x[built.param_columns[b][i]] = static_cast<double>(twice[i] / 2);
+    }
   }
   if (!built.model.complete_at_no_cost(x)) return outcome;
   outcome.values = std::move(x);
