@@ -911,6 +911,46 @@ double violation(const std::vector<Vec2>& nearest, const MedialAxis& axis) {
   return worst;
 }
 
+// An edge point's feet come from nearest-point searches started at its
+// Voronoi sites' chords, which on a long wavy curve may settle in a local
+// minimum of the distance (a foot on a bump while the disc reaches into the
+// next one, or both feet on one bump): then the global nearest place is
+// nearer than the radius. Such a point is placed again on the bisector of
+// the global nearest place and one of its feet (whichever gives a point whose
+// disc touches the boundary, nearest to where it was). nearest is updated.
+void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& boundary, double tolerance, MedialAxis& axis,
+                        std::vector<Vec2>& nearest) {
+  const double same = kSamePlace * index.face().size;
+  const auto error = [](const MedialPoint& q, Vec2 near) {
+    return std::max({std::abs(q.r - distance(near, q.p)), std::abs(q.r - distance(q.left.point, q.p)),
+                     std::abs(q.r - distance(q.right.point, q.p))});
+  };
+  std::size_t i = axis.vertices.size();
+  for (MedialEdge& e : axis.edges) {
+    for (std::size_t k = 0; k < e.points.size(); ++k, ++i) {
+      MedialPoint& q = e.points[k];
+      double worst = error(q, nearest[i]);
+      if (worst <= tolerance) continue;
+      const BoundaryPlace global = boundary.nearest(q.p);
+      for (const BoundaryPlace& foot : {q.left, q.right}) {
+        if (same_place(foot, global, same)) continue;
+        const Bisected b = bisect(index, q.p, global, foot);
+        if (!b.converged || same_place(b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
+          continue;
+        const BoundaryPlace at = boundary.nearest(b.p);
+        MedialPoint moved{b.p, b.r, b.a, b.b};
+        const double moved_error = error(moved, at.point);
+        if (moved_error >= worst) continue;
+        // Left and right of the direction of travel, as orient_touches names them.
+        const Vec2 dir = e.points[std::min(k + 1, e.points.size() - 1)].p - e.points[k > 0 ? k - 1 : 0].p;
+        if (cross(dir, moved.left.point - moved.p) < cross(dir, moved.right.point - moved.p))
+          std::swap(moved.left, moved.right);
+        q = moved, nearest[i] = at.point, worst = moved_error;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
@@ -935,6 +975,7 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
       best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
     }
   }
+  repair_edge_points(index, boundary, tolerance, best, best_nearest);
   // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
   // both ways: no boundary inside a disc, and every disc touching it.
   const double allowed = 1e-6 * face.size + face.tolerance;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <utility>
 #include <vector>
-
 namespace mm {
 
 // Points within 1e-3 of the face size of the curves and at most 1e-2 apart
@@ -82,11 +81,49 @@ struct NearestBoundary::Samples {
     }
     return count;
   }
+
+  // Calls f(sample index, distance) for every sample at a distance from p in
+  // [low, high]: per row of cells, only the columns reaching into that ring
+  // (a cell to spare each way), not the whole square round the outer circle.
+  template <class F>
+  void within(Vec2 p, double low, double high, F f) const {
+    const double low2 = low * low, high2 = high * high;
+    const auto visit = [&](int y, int x0, int x1) {
+      for (int x = std::max(x0, 0); x <= std::min(x1, nx - 1); ++x) {
+        const int c = y * nx + x;
+        for (int j = first[c]; j < first[c + 1]; ++j) {
+          const Vec2 v = places[order[j]].point - p;
+          const double d2 = dot(v, v);
+          if (d2 >= low2 && d2 <= high2) f(order[j], std::sqrt(d2));
+        }
+      }
+    };
+    const int y0 = std::max(0, static_cast<int>(std::floor((p.y - high - origin.y) / cell)) - 1);
+    const int y1 = std::min(ny - 1, static_cast<int>(std::floor((p.y + high - origin.y) / cell)) + 1);
+    for (int y = y0; y <= y1; ++y) {
+      const double cy0 = origin.y + y * cell, cy1 = cy0 + cell;
+      const double near_y = std::max({cy0 - p.y, p.y - cy1, 0.0}), far_y = std::max(p.y - cy0, cy1 - p.y);
+      if (near_y > high) continue;
+      const double outer = std::sqrt(high * high - near_y * near_y);
+      const int x0 = static_cast<int>(std::floor((p.x - outer - origin.x) / cell)) - 1;
+      const int x1 = static_cast<int>(std::floor((p.x + outer - origin.x) / cell)) + 1;
+      // Columns wholly inside the inner circle over this row hold no sample of the ring.
+      const double inner = far_y < low ? std::sqrt(low * low - far_y * far_y) : -1.0;
+      const int i0 = inner > 0 ? static_cast<int>(std::floor((p.x - inner - origin.x) / cell)) + 2 : x1 + 1;
+      const int i1 = inner > 0 ? static_cast<int>(std::floor((p.x + inner - origin.x) / cell)) - 2 : x1;
+      if (i0 > i1) {
+        visit(y, x0, x1);
+      } else {
+        visit(y, x0, i0 - 1);
+        visit(y, i1 + 1, x1);
+      }
+    }
+  }
 };
 
 NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), samples_(new Samples) {
   const FaceModel& face = index.face();
-  const double spacing = 1e-2 * face.size;
+  const double spacing = spacing_ = 1e-2 * face.size;
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
@@ -106,6 +143,17 @@ NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), sa
 
 NearestBoundary::~NearestBoundary() = default;
 
+namespace {
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double u = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
+  return distance(p, a + u * d);
+}
+
+}  // namespace
+
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   std::array<std::pair<double, int>, 8> found;
   const int count = samples_->nearest(p, 6, found);
@@ -119,17 +167,43 @@ BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   BoundaryPlace best;
   double best_distance = 1e300;
   std::vector<BoundaryPlace> refined;
-  for (int i = 0; i < count; ++i) {
-    const BoundaryPlace& place = samples_->places[found[i].second];
-    const double d = found[i].first;
-    if (d < best_distance) best = place, best_distance = d;
-    const auto near = [&](const BoundaryPlace& r) {
+  const auto stretch_refined = [&](const BoundaryPlace& place) {
+    return std::any_of(refined.begin(), refined.end(), [&](const BoundaryPlace& r) {
       return r.loop == place.loop && r.edge == place.edge && distance(r.point, place.point) <= same_stretch;
-    };
-    if (std::any_of(refined.begin(), refined.end(), near)) continue;
+    });
+  };
+  const auto refine = [&](int sample, double d) {
+    const BoundaryPlace& place = samples_->places[sample];
+    if (d < best_distance) best = place, best_distance = d;
+    if (stretch_refined(place)) return;
     refined.push_back(place);
     const BoundaryPlace exact = nearest_on_run(index_, place, p);
     if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
+  };
+  for (int i = 0; i < count; ++i) refine(found[i].second, found[i].first);
+  // The nearest point of a stretch lies within half a sample spacing (and
+  // the curves' sag from the samples' chords) of one of its samples, which
+  // may be farther than all of the six nearest samples when another stretch
+  // is almost as near (a hole's edge a hair farther than the outline):
+  // every stretch with a sample that close to the best distance is refined
+  // (samples nearer than the sixth nearest are among the six already), if
+  // the boundary between the sample and a neighbour may come nearer than the
+  // best yet: it strays from their chord by at most the sampling's tolerance.
+  const double sag = 1e-3 * index_.face().size;
+  const double reach = best_distance + 0.5 * spacing_ + sag;
+  if (count == 6 && found[5].first < reach) {
+    samples_->within(p, found[5].first, reach, [&](int sample, double d) {
+      const BoundaryPlace& here = samples_->places[sample];
+      if (stretch_refined(here)) return;
+      double chords = d;
+      for (int other : {sample - 1, sample + 1}) {
+        if (other < 0 || other >= static_cast<int>(samples_->places.size())) continue;
+        const BoundaryPlace& q = samples_->places[other];
+        if (q.loop == here.loop && q.edge == here.edge)
+          chords = std::min(chords, distance_to_segment(p, here.point, q.point));
+      }
+      if (chords - sag < best_distance) refine(sample, d);
+    });
   }
   return best;
 }

@@ -17,6 +17,7 @@ class NearestBoundary {
   struct Samples;
   const BoundaryIndex& index_;
   std::unique_ptr<Samples> samples_;
+  double spacing_ = 0.0;  // the largest gap between samples along straight stretches
 };
 
 }  // namespace mm
