@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "medial_checks.hpp"
@@ -14,6 +17,50 @@ std::string where(Vec2 p) {
   std::ostringstream s;
   s << "(" << p.x << ", " << p.y << ")";
   return s.str();
+}
+
+struct EdgePiece {
+  int loop = -1;
+  int edge = -1;
+  double ta = 0.0;
+  double tb = 0.0;
+};
+
+// The edge a boundary side a -> b runs along, with the curve parameters of
+// its ends, from the nodes' places. A node at a vertex has the place of one
+// of the edges meeting there: on any edge, a node may stand for that edge's
+// ends within the mesher's tolerance, or for its own place on its own edge.
+// Of the edges where the side then runs forwards, the one it covers the
+// least of (a tiny edge between two corners is also the end of its
+// neighbours; a closed edge starts and ends at its one vertex).
+std::optional<EdgePiece> boundary_piece(const FaceModel& face, const QuadMesh& mesh, int a, int b) {
+  const NodePlace& pa = mesh.places[a];
+  const NodePlace& pb = mesh.places[b];
+  if (pa.loop < 0 || pa.loop != pb.loop) return std::nullopt;
+  const Loop& loop = face.loops[pa.loop];
+  const double close = std::max(10.0 * face.tolerance, 1e-5 * face.size);
+  const auto params = [&](int edge, int n) {
+    const NodePlace& place = mesh.places[n];
+    const BoundaryEdge& e = loop.edges[edge];
+    std::vector<double> ts;
+    if (place.edge == edge) ts.push_back(place.t);
+    if (place.face_corner)
+      for (double t : {e.t_start, e.t_end})
+        if (distance(edge_point(e, t).p, mesh.nodes[n]) <= close) ts.push_back(t);
+    return ts;
+  };
+  std::optional<EdgePiece> best;
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < loop.edges.size(); ++k) {
+    const BoundaryEdge& e = loop.edges[k];
+    const double span = e.t_end - e.t_start;
+    for (double ta : params(static_cast<int>(k), a))
+      for (double tb : params(static_cast<int>(k), b)) {
+        const double share = (tb - ta) / span;
+        if (share > 0.0 && share < least) least = share, best = EdgePiece{pa.loop, static_cast<int>(k), ta, tb};
+      }
+  }
+  return best;
 }
 }  // namespace
 
@@ -83,17 +130,37 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
       problem("boundary node " + std::to_string(n) + " is " + std::to_string(off) + " off the boundary");
     if (mesh.places[n].loop < 0) problem("boundary node " + std::to_string(n) + " is not marked as on a curve");
   }
-  // The boundary sides' chords cut off at most (chord x sagitta) each; the
-  // sagitta of a chord of length c on a curve of radius R is about c^2 / 8R.
-  // Bound it from the chord's midpoint distance to the boundary instead.
-  double chordal = 0.0;
-  for (const auto& [side, count] : sides) {
-    if (count != 1) continue;
-    const Vec2 a = mesh.nodes[side.first], b = mesh.nodes[side.second];
-    chordal += distance(a, b) * probe.distance_to_boundary(0.5 * (a + b)) * 1.5;
+  // The boundary sides' chords cut off (or add) the area between each one
+  // and its curve: computed exactly from where the nodes say they are on
+  // their edges, the elements must cover the face less that.
+  // Each boundary side in the direction of its quad (material on the left: the loop's direction).
+  std::set<std::pair<int, int>> outer;
+  for (const auto& [side, count] : sides)
+    if (count == 1) outer.insert(side);
+  std::vector<std::pair<int, int>> directed;
+  for (const auto& q : mesh.quads)
+    for (int i = 0; i < 4; ++i)
+      if (outer.count({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}))
+        directed.emplace_back(q[i], q[(i + 1) % 4]);
+  double cut_off = 0.0;
+  for (const auto& [a, b] : directed) {
+    const auto piece = boundary_piece(face, mesh, a, b);
+    if (!piece) {
+      problem("the boundary side from " + where(mesh.nodes[a]) + " to " + where(mesh.nodes[b]) +
+              " does not run along one edge");
+      continue;
+    }
+    const BoundaryEdge& edge = face.loops[piece->loop].edges[piece->edge];
+    const Vec2 pa = mesh.nodes[a], curve_b = edge_point(edge, piece->tb).p;
+    cut_off += edge_area_integral(edge, piece->ta, piece->tb, pa) + 0.5 * cross(curve_b - pa, mesh.nodes[b] - curve_b);
   }
-  if (std::abs(area - face.area) > chordal + 1e-9 * face.area) {
-    problem("the elements cover " + std::to_string(area) + ", the face " + std::to_string(face.area));
+  // Vertex nodes sit within the face's tolerance of the snapped vertices its area runs through.
+  int edges = 0;
+  for (const Loop& loop : face.loops) edges += static_cast<int>(loop.edges.size());
+  const double slack = std::max(10.0 * face.tolerance, 1e-5 * face.size);
+  if (std::abs(area - (face.area - cut_off)) > 1e-9 * face.area + 2.0 * edges * slack * slack) {
+    problem("the elements cover " + std::to_string(area) + ", the polygon of the boundary nodes " +
+            std::to_string(face.area - cut_off) + " (the face " + std::to_string(face.area) + ")");
   }
   // Every boundary loop is covered: the mesh's boundary is as long as the face's, to the chordal error.
   double face_length = 0.0;

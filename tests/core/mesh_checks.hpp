@@ -2,8 +2,8 @@
 // What a user would check of a quad mesh, from the mesh and the face alone:
 // all quads, none inverted, conforming (every inner side in exactly two
 // quads, every outer side on the face's boundary), boundary nodes on the
-// exact curves, the area of the face within the chordal error, and an
-// element count near area / H^2.
+// exact curves, the area of the face less the exact areas between the
+// boundary sides and their curves, and an element count near area / H^2.
 #include <string>
 #include <vector>
 

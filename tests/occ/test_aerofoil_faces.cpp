@@ -7,6 +7,7 @@
 
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepTools.hxx>
+#include <algorithm>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -26,7 +27,7 @@ namespace {
 struct Case {
   std::string name;
   std::function<TopoDS_Face(double scale)> make;
-  bool mesh = true;  // false: the block mesh is not checked (see below)
+  double min_scaled_jacobian = 0.4;  // kMinScaledJacobian, below
 };
 
 std::vector<Case> cases() {
@@ -39,9 +40,11 @@ std::vector<Case> cases() {
                      }});
     }
   }
-  // The block mesh of the high-lift faces is left out: at elements of 0.02
-  // of the diagonal the mesh stage puts an inverted quad (gap 0.003) or one
-  // with scaled Jacobian 0.17 (gap 0.03) at the flap's nose, in the slot.
+  // The high-lift faces: elements of 0.02 of the diagonal (about 0.2 chords)
+  // across slots of 0.003 and 0.03 chords, where quads line up only when
+  // the boundary nodes facing each other across the slot do. Measured: 0.56
+  // (gap 0.003) and 0.64 (gap 0.03) at chord 1, but 0.235 at chord 10^4 with
+  // gap 0.003 (the slot's quads there not yet understood): bound 0.2.
   for (double gap : {0.003, 0.03}) {
     all.push_back({"high_lift_gap" + std::to_string(gap).substr(0, 5),
                    [=](double scale) {
@@ -49,7 +52,7 @@ std::vector<Case> cases() {
                      layout.gap = gap;
                      return test::high_lift_face(layout, scale);
                    },
-                   false});
+                   0.2});
   }
   for (bool rounded : {false, true}) {
     all.push_back({rounded ? "cascade_rounded" : "cascade_sharp", [=](double scale) {
@@ -87,13 +90,13 @@ TEST_P(AerofoilFaces, EveryStageIsRight) {
       const Decomposition d = decompose(face, axis, flow, {});
       const std::vector<std::string> problems = test::decomposition_problems(face, flow, d);
       EXPECT_TRUE(problems.empty()) << problems.front();
-      if (!c.mesh) continue;
       PipelineOptions options;
       options.meshing.size = 0.02 * face.size;
       const MeshedFace meshed = mesh_face(face, options);
       const std::vector<std::string> wrong = test::mesh_validity_problems(face, meshed.blocks.mesh);
       EXPECT_TRUE(wrong.empty()) << wrong.front();
-      EXPECT_GT(meshed.quality.min_scaled_jacobian, kMinScaledJacobian);
+      EXPECT_GT(meshed.quality.min_scaled_jacobian, std::min(c.min_scaled_jacobian, kMinScaledJacobian));
+      EXPECT_EQ(meshed.quality.inverted, 0);
     } catch (const SelfCheckError& e) {
       ADD_FAILURE() << e.what();
     }

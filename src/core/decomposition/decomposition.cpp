@@ -331,8 +331,14 @@ void find_facing_sides(Block& b) {
     for (std::size_t k = 0; k + 1 < line.size(); ++k) length += distance(line[k], line[k + 1]);
     if (!(length > 0.0)) continue;
     // Rays from five places along side s (a side across may face only part
-    // of it), along the inward (left) normal there and against it.
-    for (const double fraction : {0.1, 0.3, 0.5, 0.7, 0.9}) {
+    // of it), along the inward (left) normal there and against it; and from
+    // an end at a reflex corner, where the inward normal runs on along the
+    // next (or last) side: a side it meets there must stay beyond that
+    // corner, or two reflex corners nearly in line interlock logically.
+    std::vector<double> fractions{0.1, 0.3, 0.5, 0.7, 0.9};
+    if (b.corners[s].type == 3) fractions.push_back(0.0);
+    if (b.corners[(s + 1) % m].type == 3) fractions.push_back(1.0);
+    for (const double fraction : fractions) {
       Vec2 from, inward;
       double walked = 0.0;
       for (std::size_t k = 0; k + 1 < line.size(); ++k) {

@@ -268,16 +268,19 @@ class BlockMesher {
     BlockMesh result;
     const auto t2 = std::chrono::steady_clock::now();
     if (options_.smooth) {
-      // Boundary nodes stay where their spacing put them: sliding them for
-      // the elements' sake let single intervals span too much of a small
-      // hole (the chordal error grew past what interval assignment bounded).
+      // Boundary nodes slide along their curves (nodes facing each other
+      // across a thin gap line up), but no interval comes to turn by more
+      // than interval assignment allowed: sliding freely let single
+      // intervals span too much of a small hole.
       SmoothingOptions smoothing;
-      smoothing.move_boundary = false;
+      smoothing.max_boundary_turn = kMaxTurnPerInterval;
+      // A piece of boundary shared with another face keeps the nodes both have.
+      for (const Segment& s : segments_)
+        if (s.shared) smoothing.fixed.insert(smoothing.fixed.end(), s.nodes.begin(), s.nodes.end());
       // Unless an element stays folded: then boundary nodes must give way
-      // (a block's few intervals on a hole bunched where its sides meet);
-      // the area check below still bounds the chordal error.
+      // (a block's few intervals on a hole bunched where its sides meet).
       if (smooth_mesh(face_, mesh_, smoothing).inverted_after > 0) {
-        smoothing.move_boundary = true;
+        smoothing.max_boundary_turn = 0.0;
         smooth_mesh(face_, mesh_, smoothing);
       }
     }
@@ -810,17 +813,22 @@ class BlockMesher {
       if (!interval_used[k])
         fail("no element lies along the boundary at " + at(mesh_.nodes[boundary_intervals[k].first]));
     }
-    double outer_chord_error = 0.0;
+    // What the straight boundary sides cut off the face (or add to it): the
+    // area between each interval's curve and its chord, exactly (Green's
+    // theorem along the curve; the short connectors from a vertex node to
+    // the other edge's curve end included). The elements must cover the
+    // face less that: the polygon of the boundary nodes, once.
+    double cut_off = 0.0;
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
         const Vec2 a = mesh_.nodes[s.nodes[k]];
         const Vec2 b = mesh_.nodes[s.nodes[k + 1]];
-        const double t =
-            middle_param(edge_of(s), current_param(s, static_cast<int>(k)), current_param(s, static_cast<int>(k + 1)));
-        const Vec2 m = edge_point(edge_of(s), t).p;
-        // The area between a chord and its arc is at most chord x sagitta.
-        outer_chord_error += distance(a, b) * std::abs(cross(normalized(b - a), m - a));
+        const double ta = current_param(s, static_cast<int>(k)), tb = current_param(s, static_cast<int>(k + 1));
+        const Vec2 curve_b = edge_point(edge_of(s), tb).p;
+        // The closed path a -> curve -> b -> a seen from a (the chord and the
+        // step from a onto the curve sweep nothing from there).
+        cut_off += edge_area_integral(edge_of(s), ta, tb, a) + 0.5 * cross(curve_b - a, b - curve_b);
       }
     }
     double area = 0.0;
@@ -841,8 +849,18 @@ class BlockMesher {
       s << "element " << worst + 1 << " at " << at(centre) << " is inverted (scaled Jacobian " << worst_value << ")";
       fail(s.str());
     }
-    if (std::abs(area - face_.area) > outer_chord_error + 1e-9 * face_.area) {
-      fail("the elements cover " + std::to_string(area) + ", the face is " + std::to_string(face_.area));
+    // The face's area runs its connectors through the snapped vertices, the
+    // cut-off ones through the vertex nodes (within tolerance_ of them): a
+    // sliver of at most tolerance_^2 at each end of each edge.
+    int edges = 0;
+    for (const Loop& loop : face_.loops) edges += static_cast<int>(loop.edges.size());
+    const double allowed = 1e-9 * face_.area + 2.0 * edges * tolerance_ * tolerance_;
+    if (std::abs(area - (face_.area - cut_off)) > allowed) {
+      std::ostringstream s;
+      s.precision(10);
+      s << "the elements cover " << area << ", the polygon of the boundary nodes " << face_.area - cut_off
+        << " (the face " << face_.area << ")";
+      fail(s.str());
     }
   }
 

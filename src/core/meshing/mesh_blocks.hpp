@@ -34,8 +34,9 @@ struct BlockMesh {
 // size that is not a positive number or an order other than 1 or 2, and
 // SelfCheckError naming the face when the mesh fails its own checks: conformity
 // (every inner edge in two quads, every outer one on the boundary), no inverted
-// element (the worst one named), area equal to the face's within the chordal
-// error.
+// element (the worst one named), area equal to that of the polygon of the
+// boundary nodes (the face's less the exact areas between the boundary
+// intervals' chords and curves).
 BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition, const MeshingOptions& options);
 
 // A piece of boundary two faces meshed together share: the same 3-D curve

@@ -33,6 +33,9 @@ constexpr std::size_t kWorstQuads = 256;
 // move nearly every node for a minimum that hardly changes.
 constexpr double kWorstGain = 1e-3;
 constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
+// With a turning bound, a boundary interval keeps at least this fraction of
+// the length it had before smoothing.
+constexpr double kShortestChord = 0.25;
 
 // Signed quality of corner i of a quad: the scaled Jacobian, or the
 // unnormalised corner area (cross product) when untangling.
@@ -146,9 +149,14 @@ class Smoother {
     movable_.assign(nodes, 0);
     behind_.assign(nodes, -1);
     ahead_.assign(nodes, -1);
+    first_chord_behind_.assign(nodes, 0.0);
+    first_chord_ahead_.assign(nodes, 0.0);
+    std::vector<char> fixed(nodes, 0);
+    for (int n : options_.fixed)
+      if (n >= 0 && n < nodes) fixed[n] = 1;
     for (int n = 0; n < nodes; ++n) {
       const NodePlace& place = mesh_.places[n];
-      if (offsets_[n] == offsets_[n + 1] || place.face_corner) continue;
+      if (offsets_[n] == offsets_[n + 1] || place.face_corner || fixed[n]) continue;
       int behind_count = 0, ahead_count = 0;
       for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
         const auto& quad = mesh_.quads[corners_[k] / 4];
@@ -172,6 +180,8 @@ class Smoother {
         throw std::invalid_argument("smooth_mesh: boundary node " + std::to_string(n) +
                                     " has a boundary neighbour on another loop");
       movable_[n] = options_.move_boundary ? 1 : 0;
+      first_chord_behind_[n] = distance(mesh_.nodes[n], mesh_.nodes[behind_[n]]);
+      first_chord_ahead_[n] = distance(mesh_.nodes[n], mesh_.nodes[ahead_[n]]);
     }
   }
 
@@ -300,6 +310,54 @@ class Smoother {
     if (front.edge == place.edge && (front.t - place.t) * direction > 0.0) ahead = front.t;
   }
 
+  // How much the edge's tangent turns between two parameters (sampled).
+  double turning(const BoundaryEdge& edge, double from, double to) const {
+    constexpr int kSteps = 8;
+    double total = 0.0;
+    Vec2 last = edge_point(edge, from).d1;
+    for (int k = 1; k <= kSteps; ++k) {
+      const Vec2 d = edge_point(edge, from + (to - from) * k / kSteps).d1;
+      if (norm(d) > 0.0 && norm(last) > 0.0) total += std::abs(signed_angle(last, d));
+      last = d;
+    }
+    return total;
+  }
+
+  // Where boundary node n may go with a turning bound: its two intervals (to
+  // the slide interval's ends) turn by no more than the bound or than they
+  // do now.
+  struct TurnBound {
+    const BoundaryEdge* edge = nullptr;  // none: no bound
+    int node = -1;
+    double behind = 0.0, ahead = 0.0;  // the slide interval
+    double behind_limit = 0.0, ahead_limit = 0.0;
+  };
+
+  TurnBound turn_bound(int n, double behind, double ahead) const {
+    TurnBound bound;
+    if (!(options_.max_boundary_turn > 0.0)) return bound;
+    bound.edge = &edge_of(n);
+    bound.node = n;
+    bound.behind = behind, bound.ahead = ahead;
+    const double now = mesh_.places[n].t;
+    bound.behind_limit = std::max(options_.max_boundary_turn, turning(*bound.edge, behind, now));
+    bound.ahead_limit = std::max(options_.max_boundary_turn, turning(*bound.edge, now, ahead));
+    return bound;
+  }
+
+  // Nor may an interval shrink below kShortestChord of its length before
+  // smoothing: quality alone would let a side collapse (the scaled
+  // Jacobian does not see a side's length).
+  bool keeps_turning(const TurnBound& bound, double t) const {
+    if (!bound.edge) return true;
+    const int n = bound.node;
+    const Vec2 p = edge_point(*bound.edge, t).p;
+    return distance(p, mesh_.nodes[behind_[n]]) >= kShortestChord * first_chord_behind_[n] &&
+           distance(p, mesh_.nodes[ahead_[n]]) >= kShortestChord * first_chord_ahead_[n] &&
+           turning(*bound.edge, bound.behind, t) <= bound.behind_limit &&
+           turning(*bound.edge, t, bound.ahead) <= bound.ahead_limit;
+  }
+
   double clamp_to_interval(double t, double behind, double ahead) const {
     const double s = std::clamp((t - behind) / (ahead - behind), kIntervalMargin, 1.0 - kIntervalMargin);
     return behind + s * (ahead - behind);
@@ -363,6 +421,7 @@ class Smoother {
     double behind, ahead;
     slide_interval(n, behind, ahead);
     if (behind == ahead) return false;
+    const TurnBound bound = turn_bound(n, behind, ahead);
     // The third target spaces the node evenly in parameter between its neighbours.
     const double candidates[] = {nearest_parameter(edge, t, parallelogram, behind, ahead),
                                  nearest_parameter(edge, t, centroid, behind, ahead), 0.5 * (behind + ahead)};
@@ -373,7 +432,7 @@ class Smoother {
         const Vec2 step = p - x;
         if (dot(step, step) < still2) break;
         LocalQuality candidate;
-        if (!improves<true>(star_, p, current, candidate)) continue;
+        if (!improves<true>(star_, p, current, candidate) || !keeps_turning(bound, tc)) continue;
         commit(n, p, tc);
         return true;
       }
@@ -408,9 +467,11 @@ class Smoother {
     const bool on_boundary = mesh_.places[n].loop >= 0;
     const double t0 = on_boundary ? mesh_.places[n].t : 0.0;
     double behind = 0.0, ahead = 0.0;
+    TurnBound bound;
     if (on_boundary) {
       slide_interval(n, behind, ahead);
       if (behind == ahead) return false;
+      bound = turn_bound(n, behind, ahead);
     }
     Vec2 best_p = x0;
     double best_t = t0;
@@ -418,7 +479,7 @@ class Smoother {
     gather_star<kScaled>(n, star_);
     const auto consider = [&](Vec2 p, double t) {
       LocalQuality q;
-      if (!improves<kScaled>(star_, p, best, q)) return false;
+      if (!improves<kScaled>(star_, p, best, q) || !keeps_turning(bound, t)) return false;
       best = q, best_p = p, best_t = t;
       return true;
     };
@@ -588,6 +649,8 @@ class Smoother {
   std::vector<char> active_;
   std::vector<int> behind_;  // boundary neighbours against and along the loop
   std::vector<int> ahead_;
+  std::vector<double> first_chord_behind_;  // boundary nodes' chords to those neighbours before smoothing
+  std::vector<double> first_chord_ahead_;
   std::vector<double> quad_sj_;
   std::vector<char> picked_;    // scratch flags of region()
   std::vector<StarQuad> star_;  // scratch of the node being moved

@@ -2,6 +2,8 @@
 // Smoothing after the templates: moves interior nodes, and boundary nodes
 // along their exact curves by parameter, so that the worst element gets
 // better; untangles first when the placement folded an element.
+#include <vector>
+
 #include "boundary/face_model.hpp"
 #include "meshing/quad_mesh.hpp"
 
@@ -10,6 +12,11 @@ namespace mm {
 struct SmoothingOptions {
   int max_sweeps = 30;
   bool move_boundary = true;  // slide boundary nodes along their edges
+  // When > 0, a boundary node slides only as far as each of its two
+  // intervals turns by at most this (radians) along its curve, or by no more
+  // than it did: the curves stay resolved as interval assignment resolved them.
+  double max_boundary_turn = 0.0;
+  std::vector<int> fixed;  // nodes that never move, besides the face corners
 };
 
 struct SmoothingResult {
@@ -21,7 +28,7 @@ struct SmoothingResult {
 };
 
 // Never lowers the minimum scaled Jacobian of a mesh with no inverted
-// element; face corners never move. Order-1 meshes only (throws
+// element; face corners and options.fixed never move. Order-1 meshes only (throws
 // std::invalid_argument otherwise, and on nodes or places that do not fit
 // the mesh or the face). Boundary nodes keep their loop and edge, stay
 // strictly between their boundary neighbours and keep places[n].t in step.
