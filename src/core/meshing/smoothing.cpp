@@ -28,10 +28,6 @@ constexpr double kWorstBand = 0.1;
 // At most this many of the worst quads get the direct search per pass, so a
 // large mesh with a wide band of poor quads stays cheap.
 constexpr std::size_t kWorstQuads = 256;
-// A pass that lifts the minimum by less than this ends the direct search:
-// above kGoodEnough the band holds nearly every quad and further passes
-// move nearly every node for a minimum that hardly changes.
-constexpr double kWorstGain = 1e-3;
 constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 // With a turning bound, a boundary interval keeps at least this fraction of
 // the length it had before smoothing.
@@ -636,7 +632,6 @@ class Smoother {
       bool moved = false;
       for (int n : nodes) moved |= optimise_node<true>(n);
       if (!moved) break;
-      if (worst >= kGoodEnough && *std::min_element(quad_sj_.begin(), quad_sj_.end()) < worst + kWorstGain) break;
     }
   }
 
