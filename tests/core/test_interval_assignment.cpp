@@ -123,6 +123,21 @@ TEST(IntervalAssignment, SquareTakesExactGoalsAndRoundsOthers) {
   EXPECT_EQ(a.counts, (std::vector<int>{4, 2, 4, 2}));
 }
 
+// Halfway between two counts both deviate alike: the fewer intervals win.
+// A goal below a segment's lower bound gives way to the bound.
+TEST(IntervalAssignment, HalfwayGoalsTakeTheFewerAndBoundsHold) {
+  IntervalProblem half = submap({1, 1, 1, 1}, {4.5, 2.5, 4.5, 2.5});
+  IntervalAssignment a = assign_intervals(half);
+  expect_valid(half, a);
+  EXPECT_EQ(a.counts, (std::vector<int>{4, 2, 4, 2}));
+
+  IntervalProblem bound = submap({1, 1, 1, 1}, {0.3, 3, 0.3, 3});
+  bound.segments[0].min_count = bound.segments[2].min_count = 2;
+  a = assign_intervals(bound);
+  expect_valid(bound, a);
+  EXPECT_EQ(a.counts, (std::vector<int>{2, 3, 2, 3}));
+}
+
 TEST(IntervalAssignment, RectangleOppositeSidesBecomeEqualNearTheirGoals) {
   // Bottom wants 10, top 12: moving the top costs 1/12 an interval, the
   // bottom 1/10, so both take 10. Left and right are met exactly.

@@ -143,11 +143,14 @@ class Model {
   }
   int add_integer(double lower) { return add_column(lower, kUnbounded, 0.0, true); }
 
-  void add_equation(const LinearExpr& e, double rhs) {
+  // `goal`: the row of a segment's goal deviation (see add_goal_deviation).
+  void add_equation(const LinearExpr& e, double rhs, bool goal = false) {
     LinearExpr row;
     for (const auto& [col, coef] : e)
       if (coef != 0.0) row[col] = coef;
-    if (!row.empty()) rows_.push_back({std::move(row), rhs});
+    if (row.empty()) return;
+    rows_.push_back({std::move(row), rhs});
+    goal_row_.push_back(goal);
   }
 
   // |e| costs `weight`: e = plus - minus with both >= 0.
@@ -171,13 +174,45 @@ class Model {
   };
 
   Outcome solve() const;
+  bool complete_at_no_cost(std::vector<double>& x) const;
 
  private:
   std::vector<double> lower_, upper_, cost_;
   double cost_scale_ = 1.0;
   std::vector<bool> integer_;
   std::vector<std::pair<LinearExpr, double>> rows_;
+  std::vector<char> goal_row_;
 };
+
+// x holds every integer column; fills in the continuous ones (each belongs
+// to one row, coefficient +-1, lower bound 0) at their least cost, row by
+// row. True if that meets every row and only the goal rows cost anything:
+// with every count at its own goal's least deviation, no answer is then
+// cheaper, and the LP is not needed.
+bool Model::complete_at_no_cost(std::vector<double>& x) const {
+  std::vector<std::pair<double, int>> free;  // (cost, column)
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    double residual = rows_[r].second;
+    free.clear();
+    for (const auto& [col, coef] : rows_[r].first) {
+      if (integer_[col])
+        residual -= coef * x[col];
+      else
+        free.push_back({cost_[col], col});
+    }
+    std::sort(free.begin(), free.end());
+    for (const auto& [cost, col] : free) {
+      const double coef = rows_[r].first.at(col);
+      x[col] = 0.0;
+      if (residual * coef <= 0.0) continue;
+      if (cost > 0.0 && !goal_row_[r]) return false;
+      x[col] = std::min(upper_[col], residual / coef);
+      residual -= coef * x[col];
+    }
+    if (std::abs(residual) > 1e-9) return false;
+  }
+  return true;
+}
 
 // CBC's solver keeps global state (CbcMain1): one solve at a time.
 std::mutex& cbc_mutex() {
@@ -309,7 +344,7 @@ void add_goal_deviation(Model& model, int n, double goal, double weight) {
   row[model.add_column(0.0, 1.0, weight * (1.0 - 2.0 * frac), false)] -= 1.0;
   row[model.add_column(0.0, kUnbounded, weight, false)] -= 1.0;
   row[model.add_column(0.0, kUnbounded, weight, false)] += 1.0;
-  model.add_equation(row, base);
+  model.add_equation(row, base, true);
 }
 
 // The midpoint equations L_i = c_{i-1} + c_{i+1}; returns the c columns.
@@ -547,6 +582,63 @@ IntervalAssignment read_answer(const BuiltModel& built, const std::vector<double
   return a;
 }
 
+// The midpoint equations L_i = c_{i-1} + c_{i+1} solved for twice c_i
+// (m = 3 and 5: the sum of all c less the sides covering the others; m = 6:
+// two triangles, odd c on even sides and even c on odd ones).
+std::vector<long> twice_midpoint_parameters(const std::vector<long>& sides) {
+  const size_t m = sides.size();
+  long total = 0;
+  for (long l : sides) total += l;
+  std::vector<long> twice(m);
+  for (size_t i = 0; i < m; ++i) {
+    if (m == 3) twice[i] = total - 2 * sides[i];
+    if (m == 5) twice[i] = total - 2 * (sides[(i + 2) % 5] + sides[(i + 3) % 5]);
+    if (m == 6) {
+      twice[i] = -2 * sides[(i + 3) % 6];
+      for (size_t k = (i + 1) % 2; k < 6; k += 2) twice[i] += sides[k];
+    }
+  }
+  return twice;
+}
+
+// Submapped blocks have no template parameters and a midpoint block's
+// follow from its sides: when every segment at its nearest count (the fewer
+// on a tie, at least min_count) gives whole parameters >= 1 and meets the
+// equations, and the facing and slit rows at no cost, that is the optimum,
+// found without Clp (whose first call in a process also pays for loading it).
+// Empty values when it is not.
+Model::Outcome direct_outcome(const IntervalProblem& problem, const BuiltModel& built) {
+  Model::Outcome outcome;
+  for (const BlockShape& block : problem.blocks)
+    if (block.kind != BlockTemplate::Submap && block.kind != BlockTemplate::Midpoint) return outcome;
+  std::vector<double> x(built.model.columns(), 0.0);
+  std::vector<long> counts(problem.segments.size());
+  for (size_t s = 0; s < problem.segments.size(); ++s) {
+    const IntervalSegment& seg = problem.segments[s];
+    const long base = static_cast<long>(std::floor(seg.goal));
+    counts[s] = std::max<long>(seg.min_count, seg.goal - static_cast<double>(base) > 0.5 ? base + 1 : base);
+    x[built.count_columns[s]] = static_cast<double>(counts[s]);
+  }
+  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+    if (problem.blocks[b].kind != BlockTemplate::Midpoint) continue;
+    std::vector<long> sides;
+    for (const std::vector<int>& segs : problem.blocks[b].side_segments) {
+      long total = 0;
+      for (int s : segs) total += counts[s];
+      sides.push_back(total);
+    }
+    const std::vector<long> twice = twice_midpoint_parameters(sides);
+    for (size_t i = 0; i < twice.size(); ++i) {
+      if (twice[i] < 2 || twice[i] % 2 != 0) return outcome;
+      x[built.param_columns[b][i]] = static_cast<double>(twice[i] / 2);
+    }
+  }
+  if (!built.model.complete_at_no_cost(x)) return outcome;
+  outcome.values = std::move(x);
+  outcome.proven_optimal = true;
+  return outcome;
+}
+
 // Only on the error path: the shortest prefix of blocks that has no answer
 // ends with the block to blame (feasibility only shrinks as blocks are added).
 size_t first_impossible_block(const IntervalProblem& problem) {
@@ -570,7 +662,8 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
 
   if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
   const BuiltModel built = build(problem, problem.blocks.size());
-  const Model::Outcome outcome = built.model.solve();
+  Model::Outcome outcome = direct_outcome(problem, built);
+  if (outcome.values.empty()) outcome = built.model.solve();
   if (outcome.infeasible) {
     const size_t b = first_impossible_block(problem);
     throw IntervalsInfeasible(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
