@@ -688,17 +688,31 @@ class BlockMesher {
   }
 
   // Whether a boundary segment's node k lies on a vertex of its loop (the
-  // segment's parameter there is the edge's own end).
+  // segment's parameter there is the edge's own end, up to rounding: a
+  // seam's parameter may come back from a projection as 4e-16).
   bool on_loop_vertex(const Segment& s, int k) const {
     const BoundaryEdge& edge = edge_of(s);
-    return s.params[k] == edge.t_start || s.params[k] == edge.t_end;
+    const double rounding = 1e-12 * std::abs(edge.t_end - edge.t_start);
+    return std::abs(s.params[k] - edge.t_start) <= rounding || std::abs(s.params[k] - edge.t_end) <= rounding;
   }
 
-  // The parameter of a boundary segment's node k now: smoothing slides nodes
-  // along their edges, a split's end on an edge too, but not the nodes on
-  // the loop's vertices (whose place may name the other edge, or the other
-  // end of a closed curve's period).
+  // The parameter of a boundary segment's node k for the area check: its
+  // place's where smoothing slid it along the edge, the segment's own at the
+  // segment's ends. Any parameter works there as long as both segments at a
+  // node take the same one (the check adds the step from the node onto the
+  // curve), and the segment's own ends keep that so on every edge.
   double current_param(const Segment& s, int k) const {
+    const NodePlace& place = mesh_.places[s.nodes[k]];
+    if (k > 0 && k + 1 < static_cast<int>(s.nodes.size()) && place.loop == s.loop && place.edge == s.edge)
+      return place.t;
+    return s.params[k];
+  }
+
+  // Where node k of a boundary segment lies on the segment's curve now, for
+  // the mid-side nodes: smoothing slides a split's end along the edge too,
+  // but not the nodes on the loop's vertices (whose place may name the
+  // other edge, or the other end of a closed curve's period).
+  double param_on_curve(const Segment& s, int k) const {
     const NodePlace& place = mesh_.places[s.nodes[k]];
     if (place.loop == s.loop && place.edge == s.edge && !on_loop_vertex(s, k)) return place.t;
     return s.params[k];
@@ -739,8 +753,8 @@ class BlockMesher {
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
-        const double t =
-            middle_param(edge_of(s), current_param(s, static_cast<int>(k)), current_param(s, static_cast<int>(k + 1)));
+        const double t = middle_param(edge_of(s), param_on_curve(s, static_cast<int>(k)),
+                                      param_on_curve(s, static_cast<int>(k + 1)));
         NodePlace place;
         place.loop = s.loop;
         place.edge = s.edge;
