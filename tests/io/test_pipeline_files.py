@@ -22,7 +22,9 @@ def main(build, shared):
     cli = os.path.join(build, "bin", "medialmesh")
     faces = [os.path.join(shared, "geometry", "plate_with_hole.brep"),
              os.path.join(shared, "geometry", "bracket.brep"),
-             os.path.join(shared, "realcad", "faces", "occt_pumpcover_8.brep")]
+             os.path.join(shared, "realcad", "faces", "occt_pumpcover_8.brep"),
+             # Thin elements along concave arcs: order 2 must bend their sides less.
+             os.path.join(shared, "realcad", "faces", "trimesh_featuretype_18.brep")]
     with tempfile.TemporaryDirectory() as scratch:
         for face in faces:
             name = os.path.splitext(os.path.basename(face))[0]

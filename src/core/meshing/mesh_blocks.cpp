@@ -240,7 +240,7 @@ class BlockMesher {
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     result.stage_seconds.insert(result.stage_seconds.begin(),
                                 {{"intervals", seconds(t0, t1)}, {"placement", seconds(t1, t2)}});
-    result.notes = relaxed;
+    result.notes.insert(result.notes.begin(), relaxed.begin(), relaxed.end());
     result.notes.insert(result.notes.end(), intervals.notes.begin(), intervals.notes.end());
     return result;
   }
@@ -291,7 +291,13 @@ class BlockMesher {
       }
     }
     const auto t3 = std::chrono::steady_clock::now();
-    if (options_.order == 2) add_midside_nodes();
+    if (options_.order == 2) {
+      add_midside_nodes();
+      if (const int straightened = straighten_folding_curved_sides())
+        result.notes.push_back("order 2: " + std::to_string(straightened) +
+                               " boundary sides bent less than their curve (an element following the curve there "
+                               "would have a Jacobian of the wrong sign)");
+    }
     check_mesh();
     const auto t4 = std::chrono::steady_clock::now();
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
@@ -760,7 +766,9 @@ class BlockMesher {
         place.edge = s.edge;
         place.t = t;
         const int a = s.nodes[k], b = s.nodes[k + 1];
-        on_boundary[{std::min(a, b), std::max(a, b)}] = add(edge_point(edge_of(s), t).p, place);
+        const int middle = add(edge_point(edge_of(s), t).p, place);
+        on_boundary[{std::min(a, b), std::max(a, b)}] = middle;
+        if (s.shared) shared_midside_.push_back(middle);
         boundary_node[a] = boundary_node[b] = 1;
       }
     }
@@ -787,6 +795,74 @@ class BlockMesher {
         mesh_.midside[e][i] = middle;
       }
     }
+  }
+
+  // The least Jacobian determinant of an 8-node element over the 3 x 3 Gauss
+  // points, where a solver evaluates it (corners counter-clockwise, mid-side
+  // node i on the side from corner i to i + 1).
+  double least_quadratic_jacobian(std::size_t e) const {
+    static const double kCorner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    static const double kGauss[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+    Vec2 x[8];
+    for (int i = 0; i < 4; ++i) {
+      x[i] = mesh_.nodes[mesh_.quads[e][i]];
+      x[4 + i] = mesh_.nodes[mesh_.midside[e][i]];
+    }
+    double least = std::numeric_limits<double>::infinity();
+    for (double xi : kGauss) {
+      for (double eta : kGauss) {
+        Vec2 d_xi, d_eta;
+        for (int i = 0; i < 4; ++i) {
+          const double a = kCorner[i][0], b = kCorner[i][1];
+          d_xi = d_xi + 0.25 * a * (1 + eta * b) * (2 * xi * a + eta * b) * x[i];
+          d_eta = d_eta + 0.25 * b * (1 + xi * a) * (xi * a + 2 * eta * b) * x[i];
+        }
+        for (int i : {0, 2}) {  // mid-sides at eta = -1 and +1
+          const double b = i == 0 ? -1.0 : 1.0;
+          d_xi = d_xi + (-xi * (1 + eta * b)) * x[4 + i];
+          d_eta = d_eta + (0.5 * b * (1 - xi * xi)) * x[4 + i];
+        }
+        for (int i : {1, 3}) {  // mid-sides at xi = +1 and -1
+          const double a = i == 1 ? 1.0 : -1.0;
+          d_xi = d_xi + (0.5 * a * (1 - eta * eta)) * x[4 + i];
+          d_eta = d_eta + (-eta * (1 + xi * a)) * x[4 + i];
+        }
+        least = std::min(least, cross(d_xi, d_eta));
+      }
+    }
+    return least;
+  }
+
+  // A thin element along a curve that bends into it (a layer along a
+  // concave arc) can fold once its boundary side follows the curve: its
+  // boundary mid-side nodes move back towards their chords' middles, by
+  // halves, until the element is valid (the node keeps its place on the
+  // edge for boundary conditions). Returns how many sides were bent less.
+  int straighten_folding_curved_sides() {
+    int straightened = 0;
+    for (std::size_t e = 0; e < mesh_.quads.size(); ++e) {
+      if (least_quadratic_jacobian(e) > 0.0) continue;
+      std::vector<std::pair<int, Vec2>> sides;  // mid-side node, its chord's middle
+      for (int i = 0; i < 4; ++i) {
+        const int m = mesh_.midside[e][i];
+        // A side shared with another face keeps the node both faces have.
+        if (mesh_.places[m].loop < 0 ||
+            std::find(shared_midside_.begin(), shared_midside_.end(), m) != shared_midside_.end())
+          continue;
+        const Vec2 chord_middle = 0.5 * (mesh_.nodes[mesh_.quads[e][i]] + mesh_.nodes[mesh_.quads[e][(i + 1) % 4]]);
+        sides.emplace_back(m, chord_middle);
+      }
+      if (sides.empty()) continue;  // an inner fold: the check below names it
+      std::vector<Vec2> on_curve;
+      for (const auto& [m, middle] : sides) on_curve.push_back(mesh_.nodes[m]);
+      for (double bend : {0.5, 0.25, 0.125, 0.0625, 0.0}) {
+        for (std::size_t j = 0; j < sides.size(); ++j)
+          mesh_.nodes[sides[j].first] = sides[j].second + bend * (on_curve[j] - sides[j].second);
+        if (least_quadratic_jacobian(e) > 0.0) break;
+      }
+      straightened += static_cast<int>(sides.size());
+    }
+    return straightened;
   }
 
   // The mesh's own checks: conformity, orientation, area.
@@ -877,6 +953,13 @@ class BlockMesher {
       s << "element " << worst + 1 << " at " << at(centre) << " is inverted (scaled Jacobian " << worst_value << ")";
       fail(s.str());
     }
+    for (std::size_t e = 0; e < mesh_.midside.size(); ++e) {
+      if (least_quadratic_jacobian(e) > 0.0) continue;
+      Vec2 centre;
+      for (int n : mesh_.quads[e]) centre = centre + 0.25 * mesh_.nodes[n];
+      fail("8-node element " + std::to_string(e + 1) + " at " + at(centre) +
+           " has a Jacobian of the wrong sign at a Gauss point");
+    }
     // The face's area runs its connectors through the snapped vertices, the
     // cut-off ones through the vertex nodes (within tolerance_ of them): a
     // sliver of at most tolerance_^2 at each end of each edge.
@@ -899,6 +982,7 @@ class BlockMesher {
   double tolerance_;
   std::vector<int> counts_;  // intervals per segment, as placed
   std::vector<Segment> segments_;
+  std::vector<int> shared_midside_;                       // order 2: mid-side nodes on sides shared with another face
   std::vector<std::vector<std::vector<PieceUse>>> uses_;  // per block, per side
   std::vector<BlockShape> shapes_;
   std::vector<int> vertex_of_end_;  // per segment end (2 s + 0 start, 2 s + 1 end)
@@ -1249,7 +1333,7 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     // The assignment and placement were done for all faces at once.
     mesh.stage_seconds.insert(mesh.stage_seconds.begin(), {{"intervals", f == 0 ? seconds(t0, t1) : 0.0},
                                                            {"placement", f == 0 ? seconds(t1, t2) : 0.0}});
-    mesh.notes = relaxed[f];
+    mesh.notes.insert(mesh.notes.begin(), relaxed[f].begin(), relaxed[f].end());
     if (f == 0) mesh.notes.insert(mesh.notes.end(), intervals.notes.begin(), intervals.notes.end());
     result.faces.push_back(std::move(mesh));
   }
