@@ -139,6 +139,22 @@ TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
   }
 }
 
+// A face whose last decomposition attempt (corners typed by their angles)
+// gave a block turned inside out, its outline running clockwise, with exit
+// code 0: it must now pass the decomposition checks or fail loudly.
+TEST(FuzzFaces, NoBlockTurnedInsideOut) {
+  const FaceModel face = face_model_from_brep_string(fuzz_face_text("bspline_1_717"), "bspline_1_717");
+  const MedialAxis axis = compute_medial_axis(face);
+  const MeshFlow flow = compute_mesh_flow(face, axis);
+  try {
+    const Decomposition d = decompose(face, axis, flow, {});
+    EXPECT_TRUE(test::decomposition_problems(face, flow, d).empty());
+    for (const Block& b : d.blocks) EXPECT_GT(b.area, 0.0);
+  } catch (const SelfCheckError& e) {
+    EXPECT_NE(std::string(e.what()).find("bspline_1_717"), std::string::npos) << e.what();
+  }
+}
+
 // The relaxed rings: the pentagon's corner taken as flat cancels its k = +1
 // against the -1 on its corner, so the mesh has no irregular interior node,
 // and says what was relaxed.

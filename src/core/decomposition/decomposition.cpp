@@ -2129,6 +2129,9 @@ class Decomposer {
       if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
       if (splits_cross(b)) throw SelfCheckFailure("decomposition: a block's outline crosses itself");
+      // An outline that runs clockwise is a block turned inside out (the
+      // areas may still add up, the others' covering it twice).
+      if (!(b.area > 0.0)) throw SelfCheckFailure("decomposition: a block's outline runs clockwise (no area)");
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
       if (sum != 4 + k_inside[o.component] && lenient_ && unit_in.count(o.component) == 0 &&
