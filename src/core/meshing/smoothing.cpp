@@ -175,7 +175,7 @@ class Smoother {
       if (mesh_.places[ahead_[n]].loop != place.loop || mesh_.places[behind_[n]].loop != place.loop)
         throw std::invalid_argument("smooth_mesh: boundary node " + std::to_string(n) +
                                     " has a boundary neighbour on another loop");
-      movable_[n] = options_.move_boundary ? 1 : 0;
+      movable_[n] = 1;
       first_chord_behind_[n] = distance(mesh_.nodes[n], mesh_.nodes[behind_[n]]);
       first_chord_ahead_[n] = distance(mesh_.nodes[n], mesh_.nodes[ahead_[n]]);
     }

@@ -11,7 +11,6 @@ namespace mm {
 
 struct SmoothingOptions {
   int max_sweeps = 30;
-  bool move_boundary = true;  // slide boundary nodes along their edges
   // When > 0, a boundary node slides only as far as each of its two
   // intervals turns by at most this (radians) along its curve, or by no more
   // than it did: the curves stay resolved as interval assignment resolved them.
