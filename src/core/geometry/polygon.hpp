@@ -1,6 +1,7 @@
 #pragma once
-// Point tests against a closed polygon given as its corners (the last joins
-// the first), used by the decomposition's self-check and its pictures.
+// Point tests against a segment and against a closed polygon given as its
+// corners (the last joins the first), used by the decomposition's self-check
+// and its pictures and by the medial axis's nearest boundary search.
 #include <algorithm>
 #include <vector>
 
@@ -19,15 +20,19 @@ inline bool inside_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
   return in;
 }
 
+// The distance from p to the segment from a to b.
+inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double len2 = dot(d, d);
+  const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+  return distance(a + f * d, p);
+}
+
 // The distance from p to the polygon's outline.
 inline double distance_to_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
   double best = 1e300;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 a = polygon[j], d = polygon[i] - a;
-    const double len2 = dot(d, d);
-    const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, distance(a + f * d, p));
-  }
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+    best = std::min(best, distance_to_segment(p, polygon[j], polygon[i]));
   return best;
 }
 

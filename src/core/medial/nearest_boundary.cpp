@@ -5,6 +5,9 @@
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "geometry/polygon.hpp"
+
 namespace mm {
 
 // Points within 1e-3 of the face size of the curves and at most 1e-2 apart
@@ -142,17 +145,6 @@ NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), sa
 }
 
 NearestBoundary::~NearestBoundary() = default;
-
-namespace {
-
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double dd = dot(d, d);
-  const double u = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
-  return distance(p, a + u * d);
-}
-
-}  // namespace
 
 BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
   std::array<std::pair<double, int>, 8> found;
