@@ -67,6 +67,7 @@
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "decomposition_checks.hpp"
@@ -136,6 +137,37 @@ TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
       continue;
     }
     EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << name;
+  }
+}
+
+// Faces whose meshes were valid but far coarser than asked: a side facing a
+// much shorter one in a mapped block took the short one's count, since
+// interval assignment charged at most one goal's worth for any coarsening.
+// elliptic_1_119, a teardrop whose 25 degree tip sits in a block folded there
+// (its long sides face the halves of the cut across it): 19 quads for
+// area / H^2 = 52, boundary intervals up to 9 H. bspline_1_1957 and
+// elliptic_1_609, rings meshed as radial grids whose outer loops are 5.5 and
+// 2 times the inner one: the outer loop took the hole's count (60 quads for
+// 151, intervals 5.5 H; 42 for 120). The radial grid stays.
+TEST(FuzzFaces, ElementCountFollowsTheTargetSize) {
+  for (const auto& [name, ring] : std::vector<std::pair<std::string, bool>>{
+           {"elliptic_1_119", false}, {"bspline_1_1957", true}, {"elliptic_1_609", true}}) {
+    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    PipelineOptions options;
+    options.meshing.size = 0.05 * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    const QuadMesh& mesh = m.blocks.mesh;
+    EXPECT_TRUE(test::mesh_validity_problems(face, mesh).empty()) << name;
+    EXPECT_EQ(test::element_count_problem(face, mesh, options.meshing.size), "") << name;
+    if (!ring) continue;
+    EXPECT_TRUE(m.quality.irregular_interior.empty()) << name;
+    double longest = 0.0;  // boundary interval: a side of one element only
+    std::map<std::pair<int, int>, int> sides;
+    for (const auto& q : mesh.quads)
+      for (int i = 0; i < 4; ++i) ++sides[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
+    for (const auto& [side, uses] : sides)
+      if (uses == 1) longest = std::max(longest, norm(mesh.nodes[side.first] - mesh.nodes[side.second]));
+    EXPECT_LT(longest, 3.0 * options.meshing.size) << name;
   }
 }
 
