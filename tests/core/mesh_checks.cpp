@@ -125,6 +125,15 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
     if (!probe.inside(centre) && probe.distance_to_boundary(centre) > sagitta + on_curve)
       problem("element " + std::to_string(e) + " has its centre outside the face at " + where(centre));
   }
+  // An interior node in two elements has them share both its sides: one is flat there.
+  std::vector<int> valence(mesh.nodes.size(), 0);
+  for (const auto& q : mesh.quads)
+    for (int n : q) ++valence[n];
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    if (!on_boundary[n] && valence[n] > 0 && valence[n] < 3)
+      problem("interior node " + std::to_string(n) + " at " + where(mesh.nodes[n]) + " is in only " +
+              std::to_string(valence[n]) + " elements");
+  }
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     if (!on_boundary[n]) continue;
     const double off = probe.distance_to_boundary(mesh.nodes[n]);
