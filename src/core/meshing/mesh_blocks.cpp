@@ -22,6 +22,12 @@ namespace {
 // holes and fillets stay resolved however large the target size is (a full
 // circle gets at least 8 intervals).
 constexpr double kMaxTurnPerInterval = kPi / 4.0;
+// Below this worst scaled Jacobian after smoothing with the turning bound,
+// boundary nodes are freed for at most this many more passes, stopping
+// once a pass with no inverted element lifts the worst by less than the gain.
+constexpr double kPoorAfterSmoothing = 0.3;
+constexpr int kFreeSmoothingPasses = 4;
+constexpr double kSmoothingGain = 1e-3;
 
 // One piece of the outlines that gets one interval count: a run of a split
 // between two of its polyline points (a split is cut where it crosses the
@@ -288,11 +294,27 @@ class BlockMesher {
         if (on_loop_vertex(s, 0)) smoothing.fixed.push_back(s.nodes.front());
         if (on_loop_vertex(s, static_cast<int>(s.nodes.size()) - 1)) smoothing.fixed.push_back(s.nodes.back());
       }
-      // Unless an element stays folded: then boundary nodes must give way
-      // (a block's few intervals on a hole bunched where its sides meet).
-      if (smooth_mesh(face_, mesh_, smoothing).inverted_after > 0) {
+      // Unless an element stays folded or poor: then boundary nodes may give
+      // way (a block's few intervals on a hole bunched where its sides meet,
+      // nodes facing each other across a thin gap out of line). Each free
+      // pass starts from the last one's nodes with a fresh search (its
+      // chords and stalls reset), which climbs out of optima one pass
+      // settles in; the best mesh seen is kept.
+      SmoothingResult best = smooth_mesh(face_, mesh_, smoothing);
+      const auto poor = [](const SmoothingResult& r) {
+        return r.inverted_after > 0 || r.min_scaled_jacobian_after < kPoorAfterSmoothing;
+      };
+      if (poor(best)) {
         smoothing.max_boundary_turn = 0.0;
-        smooth_mesh(face_, mesh_, smoothing);
+        QuadMesh trial = mesh_;
+        for (int pass = 0; pass < kFreeSmoothingPasses && poor(best); ++pass) {
+          const SmoothingResult r = smooth_mesh(face_, trial, smoothing);
+          if (r.inverted_after < best.inverted_after ||
+              (r.inverted_after == best.inverted_after && r.min_scaled_jacobian_after > best.min_scaled_jacobian_after))
+            best = r, mesh_ = trial;
+          if (r.inverted_after == 0 && r.min_scaled_jacobian_after < r.min_scaled_jacobian_before + kSmoothingGain)
+            break;
+        }
       }
     }
     const auto t3 = std::chrono::steady_clock::now();
