@@ -44,11 +44,13 @@ std::vector<Case> cases() {
   // across slots of 0.003 and 0.03 chords, where quads line up only when
   // the boundary nodes facing each other across the slot do. Gap 0.003 gets
   // a placement folded in the flap's slot (an element of scaled Jacobian
-  // -0.856 before smoothing, the same at every scale), and what untangling
-  // makes of it hangs on rounding: the same face scaled by 1, 1.001, 2, 3,
-  // 10, 100, 10^3, 10^4 measured 0.547, 0.148, 0.547, 0.059, 0.059, 0.120,
-  // 0.082, 0.124 (powers of two repeat scale 1 bit for bit). Bound 0.05 for
-  // that face until the slot's layout stops folding; gap 0.03 keeps 0.2.
+  // -0.856 before smoothing, the same at every scale: a block wraps the
+  // flap's nose and a straight spoke of its template crosses the flap).
+  // Smoothing with the boundary turning bound leaves it at 0.06 to 0.15 at
+  // most scales, so boundary nodes are then freed for fresh passes: the same
+  // face scaled by 1, 1.001, 2, 3, 10, 100, 10^3, 10^4 measured 0.547, 0.539,
+  // 0.547, 0.397, 0.300, 0.482, 0.474, 0.522. Bound 0.25 for that face;
+  // gap 0.03 keeps 0.2.
   for (double gap : {0.003, 0.03}) {
     all.push_back({"high_lift_gap" + std::to_string(gap).substr(0, 5),
                    [=](double scale) {
@@ -56,7 +58,7 @@ std::vector<Case> cases() {
                      layout.gap = gap;
                      return test::high_lift_face(layout, scale);
                    },
-                   gap < 0.01 ? 0.05 : 0.2});
+                   gap < 0.01 ? 0.25 : 0.2});
   }
   for (bool rounded : {false, true}) {
     all.push_back({rounded ? "cascade_rounded" : "cascade_sharp", [=](double scale) {
