@@ -119,7 +119,7 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
         "bspline_2_1947", "bspline_5_357",   "bspline_1_777", "bspline_1_2",    "bspline_1_1262", "plate_1_1391",
         "bspline_1_1272", "filleted_4_1700", "bspline_2_792", "aerofoil_3_201", "aerofoil_3_288", "plate_3_686",
         "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",  "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
-        "bspline_1_1257", "aerofoil_1_68"}) {
+        "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
