@@ -497,6 +497,13 @@ class Builder {
         for (std::size_t k = j + 1; k < candidates.size(); ++k) {
           const Equidistant exact = equidistant(index_, p, {candidates[i], candidates[j], candidates[k]});
           if (!exact.converged || distance(exact.p, p) >= best) continue;
+          // Two of the places slid into one (from a place on a thin face's
+          // far side, the search can run round an end onto the near side):
+          // then any point of the other two's bisector solves the equations,
+          // and the point found is an ordinary point of that edge.
+          const auto& e = exact.places;
+          const double same = kSamePlace * size();
+          if (same_place(e[0], e[1], same) || same_place(e[0], e[2], same) || same_place(e[1], e[2], same)) continue;
           std::vector<BoundaryPlace> touches;
           bool empty = true;
           for (const BoundaryPlace& c : candidates) {
@@ -558,9 +565,12 @@ class Builder {
   }
 
   // A place on a loop moved by arc length ds along the loop's order (way +1)
-  // or against it (-1), across tangent joins (a closed curve's seam is one);
-  // false at a corner, where no curvature contact can lie beyond.
-  bool advance(BoundaryPlace& q, int way, double ds) const {
+  // or against it (-1), across tangent joins (a closed curve's seam is one)
+  // and reflex corners, past which the boundary a disc touches goes on
+  // (crossed says one was passed); false at a convex corner, where the axis
+  // ends in the corner's flare and no curvature contact can lie beyond.
+  bool advance(BoundaryPlace& q, int way, double ds, bool& crossed) const {
+    crossed = false;
     const BoundaryEdge& edge = index_.edge(q.loop, q.edge);
     const double sense = (edge.t_end >= edge.t_start ? 1.0 : -1.0) * way;
     const double t = q.t + sense * ds / std::max(norm(evaluate(edge.curve, q.t).d1), 1e-300);
@@ -570,69 +580,138 @@ class Builder {
       return true;
     }
     const int count = index_.edge_count(q.loop);
-    if (index_.is_corner(q.loop, way > 0 ? (q.edge + 1) % count : q.edge)) return false;
+    const int vertex = way > 0 ? (q.edge + 1) % count : q.edge;
+    if (index_.is_corner(q.loop, vertex)) {
+      if (!index_.is_reflex(q.loop, vertex)) return false;
+      crossed = true;
+    }
     const int next = way > 0 ? (q.edge + 1) % count : (q.edge + count - 1) % count;
     const BoundaryEdge& following = index_.edge(q.loop, next);
     q = index_.place(q.loop, next, way > 0 ? following.t_start : following.t_end);
     return true;
   }
 
+  // Places along the boundary about ds apart, in order. cut[i] says a reflex
+  // corner lies between places i and i + 1, cut_front and cut_back that a
+  // convex corner cut the run short: a curvature peak is a peak among its
+  // neighbours on its side of a corner, and may lie at a corner.
+  struct Run {
+    std::vector<BoundaryPlace> places;
+    std::vector<bool> cut;
+    bool cut_front = false, cut_back = false;
+  };
+
+  struct Walk {
+    std::vector<BoundaryPlace> places;  // from nearest the start on, the start left out
+    std::vector<bool> crossed;          // a reflex corner was passed on the way to the place
+    bool stopped = false;               // at a convex corner
+  };
+
+  Walk walk(const BoundaryPlace& from, int way, double ds, int steps) const {
+    Walk w;
+    BoundaryPlace q = from;
+    for (int k = 0; k < steps; ++k) {
+      bool crossed = false;
+      if (!advance(q, way, ds, crossed)) {
+        w.stopped = true;
+        break;
+      }
+      w.places.push_back(q);
+      w.crossed.push_back(crossed);
+    }
+    return w;
+  }
+
+  // The run from the far end of `behind` through `foot` to the far end of
+  // the first `count` places of `ahead`.
+  static Run join(const Walk& behind, const BoundaryPlace& foot, const Walk& ahead, std::size_t count) {
+    Run run;
+    for (std::size_t k = behind.places.size(); k-- > 0;) {
+      run.places.push_back(behind.places[k]);
+      run.cut.push_back(behind.crossed[k]);
+    }
+    run.places.push_back(foot);
+    count = std::min(count, ahead.places.size());
+    for (std::size_t k = 0; k < count; ++k) {
+      run.cut.push_back(ahead.crossed[k]);
+      run.places.push_back(ahead.places[k]);
+    }
+    run.cut_front = behind.stopped;
+    run.cut_back = ahead.stopped && count == ahead.places.size();
+    return run;
+  }
+
   // The end of an axis between two places of one smooth curve: the centre of
   // curvature at a curvature peak (an ellipse's is at x = +-(a^2 - b^2)/a on
-  // its major axis). The peaks within the end's radius r along the boundary
-  // either way from its foot are candidates (the discretised end lies a few
-  // chords off, and its two feet may already have met or may straddle a
-  // closed curve's seam); the one whose centre is nearest the end point p
-  // among those whose disc is empty is it. Empty if no true local maximum of
-  // curvature lies there.
+  // its major axis), or nothing if no true local maximum of curvature lies
+  // near. Every disc of a branch ending there holds the boundary from one of
+  // its touching points to the other, the end's touching point among it: so
+  // where the end's two feet are apart, the peaks on the boundary between
+  // them (the short way, past reflex corners) are the candidates, the one
+  // nearest the end point p among those whose disc is empty. A wavy cap has
+  // peaks close together whose centres are all near p, and the branch the
+  // Voronoi diagram kept runs into one of them; the nearest either way may
+  // be its neighbour's, and an edge hung on that one folds back. Where the
+  // feet have met, or passed each other (the discretised end lies a few
+  // chords off), or no peak between them has an empty disc, the peaks
+  // within the end's radius r along the boundary either way from each foot
+  // are the candidates: an empty disc first, then the nearest to p.
   std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
     if (touches.empty() || r <= 0) return std::nullopt;
-    std::optional<MedialVertex> best;
-    bool best_empty = false;
-    // Each touching place's run: beside a reflex corner the end's feet may
-    // lie on either side of it, and the peak on the other side's.
+    constexpr int kSamples = 64;  // per radius along the boundary
+    const double ds = r / kSamples;
+    std::vector<BoundaryPlace> feet;
     for (BoundaryPlace foot : touches) {
       foot.corner_itself = false;
-      foot = nearest_on_run(index_, foot, p);
-      peaks_near(foot, p, r, best, best_empty);
+      feet.push_back(nearest_on_run(index_, foot, p));
     }
+    std::optional<MedialVertex> best;
+    bool best_empty = false;
+    if (feet.size() == 2 && feet[0].loop == feet[1].loop) {
+      // From one foot both ways, at most a circle's length of the end's disc,
+      // to the first place beside the other foot; a few places more either
+      // side (the feet are the discretised end's, a chord off).
+      constexpr int kMargin = kSamples / 8;
+      const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
+      std::optional<Run> cap;
+      std::size_t shortest = static_cast<std::size_t>(reach);
+      for (const int way : {1, -1}) {
+        const Walk ahead = walk(feet[0], way, ds, reach + kMargin);
+        for (std::size_t k = 0; k < ahead.places.size() && k < shortest; ++k) {
+          if (distance(ahead.places[k].point, feet[1].point) > ds) continue;
+          cap = join(walk(feet[0], -way, ds, kMargin), feet[0], ahead, k + 1 + kMargin);
+          shortest = k;
+          break;
+        }
+      }
+      if (cap) peaks_on(*cap, p, ds, best, best_empty);
+      if (best_empty) return best;
+      best.reset();
+    }
+    for (const BoundaryPlace& foot : feet)
+      peaks_on(join(walk(foot, -1, ds, kSamples), foot, walk(foot, 1, ds, kSamples), kSamples), p, ds, best,
+               best_empty);
     return best;
   }
 
-  // The curvature peaks within r of the foot along its run, as candidates for
-  // curvature_contact: best is the nearest to p whose disc is empty, else the
-  // nearest.
-  void peaks_near(const BoundaryPlace& foot, Vec2 p, double r, std::optional<MedialVertex>& best,
-                  bool& best_empty) const {
-    // Samples along the run, in order, from r behind the foot to r ahead;
-    // a run cut short by a corner ends at the corner.
-    constexpr int kSamples = 64;
-    const double ds = r / kSamples;
-    std::vector<BoundaryPlace> behind{foot}, ahead{foot};
-    bool corner_behind = false, corner_ahead = false;
-    for (int way : {-1, 1}) {
-      auto& side = way < 0 ? behind : ahead;
-      for (int k = 0; k < kSamples; ++k) {
-        BoundaryPlace q = side.back();
-        if (!advance(q, way, ds)) {
-          (way < 0 ? corner_behind : corner_ahead) = true;
-          break;
-        }
-        side.push_back(q);
-      }
-    }
-    std::vector<BoundaryPlace> run(behind.rbegin(), behind.rend());
-    run.insert(run.end(), ahead.begin() + 1, ahead.end());
-    const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
-    for (std::size_t i = 0; i < run.size(); ++i) {
-      // A peak of the run; at a run's end only where a corner cut it short
-      // (the curvature may rise all the way to a reflex corner).
-      if ((i == 0 && !corner_behind) || (i + 1 == run.size() && !corner_ahead)) continue;
-      const double k = kappa(run[i]);
-      if (k <= 0 || (i > 0 && k < kappa(run[i - 1])) || (i + 1 < run.size() && k < kappa(run[i + 1]))) continue;
+  // The curvature peaks of a run, as candidates for curvature_contact: best
+  // is the nearest to p whose disc is empty, else the nearest.
+  void peaks_on(const Run& run, Vec2 p, double ds, std::optional<MedialVertex>& best, bool& best_empty) const {
+    const std::size_t n = run.places.size();
+    std::vector<double> kappa(n);
+    for (std::size_t i = 0; i < n; ++i)
+      kappa[i] = curvature(index_.edge(run.places[i].loop, run.places[i].edge), run.places[i].t);
+    for (std::size_t i = 0; i < n; ++i) {
+      // Neighbours on this place's side of any corner; at a run's end, a
+      // place may be a peak only where a corner cut it short (the curvature
+      // may rise all the way to a corner).
+      const bool before = i > 0 && !run.cut[i - 1], after = i + 1 < n && !run.cut[i];
+      if ((i == 0 && !run.cut_front) || (i + 1 == n && !run.cut_back)) continue;
+      const double k = kappa[i];
+      if (k <= 0 || (before && k < kappa[i - 1]) || (after && k < kappa[i + 1])) continue;
       // Golden-section refinement within a sample step either side, on the
       // sample's edge (a closed curve's seam may lie between the samples).
-      const BoundaryPlace& at_sample = run[i];
+      const BoundaryPlace& at_sample = run.places[i];
       const BoundaryEdge& edge = index_.edge(at_sample.loop, at_sample.edge);
       const double dt = ds / std::max(norm(evaluate(edge.curve, at_sample.t).d1), 1e-300);
       double a = std::max(std::min(edge.t_start, edge.t_end), at_sample.t - dt);
@@ -916,8 +995,14 @@ double violation(const std::vector<Vec2>& nearest, const MedialAxis& axis) {
 // minimum of the distance (a foot on a bump while the disc reaches into the
 // next one, or both feet on one bump): then the global nearest place is
 // nearer than the radius. Such a point is placed again on the bisector of
-// the global nearest place and one of its feet (whichever gives a point whose
-// disc touches the boundary, nearest to where it was). nearest is updated.
+// the global nearest place and one of its feet. The global place stands in
+// for the foot on its side, the nearer one, so the farther foot is kept
+// first: the point's two touches stay one on each side of its edge. Kept
+// the other way (the foot beside the global place), a point beside a pruned
+// ripple branch becomes the ripple's own bisector point, touching two places
+// on one side, and the edge's touches fold back there. Only where that
+// leaves the disc off the boundary (both feet were on one bump) is the
+// other foot kept instead. nearest is updated.
 void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& boundary, double tolerance, MedialAxis& axis,
                         std::vector<Vec2>& nearest) {
   const double same = kSamePlace * index.face().size;
@@ -932,7 +1017,9 @@ void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& bound
       double worst = error(q, nearest[i]);
       if (worst <= tolerance) continue;
       const BoundaryPlace global = boundary.nearest(q.p);
-      for (const BoundaryPlace& foot : {q.left, q.right}) {
+      const bool left_nearer = distance(q.left.point, global.point) < distance(q.right.point, global.point);
+      for (const BoundaryPlace& foot : {left_nearer ? q.right : q.left, left_nearer ? q.left : q.right}) {
+        if (worst <= tolerance) break;
         if (same_place(foot, global, same)) continue;
         const Bisected b = bisect(index, q.p, global, foot);
         if (!b.converged || same_place(b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
