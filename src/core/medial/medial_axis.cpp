@@ -256,9 +256,7 @@ class Builder {
   // A branch from a curvature peak is medial only if the disc at the centre of
   // curvature holds no boundary: else another edge cuts it off first.
   bool curvature_end_is_medial(int node) const {
-    const Vec2 p = node_point(node);
-    const std::optional<MedialVertex> v =
-        curvature_contact(p, graph_.vertices[node_vertex_[node]].r, touches_at(node, p));
+    const std::optional<MedialVertex> v = curvature_contact(node);
     return v && disc_is_empty(v->p, v->r);
   }
 
@@ -500,10 +498,15 @@ class Builder {
           // Two of the places slid into one (from a place on a thin face's
           // far side, the search can run round an end onto the near side):
           // then any point of the other two's bisector solves the equations,
-          // and the point found is an ordinary point of that edge.
+          // and the point found is an ordinary point of that edge. A reflex
+          // corner reached along both its edges is left alone: the chords'
+          // diagram splits the corner's normal wedge between the two edges'
+          // ends, and this has long stood for the junction there.
           const auto& e = exact.places;
-          const double same = kSamePlace * size();
-          if (same_place(e[0], e[1], same) || same_place(e[0], e[2], same) || same_place(e[1], e[2], same)) continue;
+          const auto one = [&](const BoundaryPlace& a, const BoundaryPlace& b) {
+            return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
+          };
+          if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) continue;
           std::vector<BoundaryPlace> touches;
           bool empty = true;
           for (const BoundaryPlace& c : candidates) {
@@ -526,6 +529,13 @@ class Builder {
     }
     nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
     axis_.vertices.push_back(v);
+  }
+
+  bool at_reflex_corner(const BoundaryPlace& place) const {
+    return std::any_of(face_.corners.begin(), face_.corners.end(), [&](const Corner& c) {
+      return c.loop == place.loop && index_.is_reflex(c.loop, c.vertex) &&
+             distance(c.position, place.point) <= kSamePlace * size();
+    });
   }
 
   void make_end(int node, Vec2 p) {
@@ -556,7 +566,7 @@ class Builder {
     fallback.p = p;
     fallback.r = r;
     fallback.touches = touches;
-    nodes_[node].vertex = add_vertex(curvature_contact(p, r, touches).value_or(fallback));
+    nodes_[node].vertex = add_vertex(curvature_contact(node).value_or(fallback));
   }
 
   int add_vertex(const MedialVertex& v) {
@@ -641,22 +651,26 @@ class Builder {
     return run;
   }
 
-  // The end of an axis between two places of one smooth curve: the centre of
-  // curvature at a curvature peak (an ellipse's is at x = +-(a^2 - b^2)/a on
-  // its major axis), or nothing if no true local maximum of curvature lies
-  // near. Every disc of a branch ending there holds the boundary from one of
-  // its touching points to the other, the end's touching point among it: so
-  // where the end's two feet are apart, the peaks on the boundary between
-  // them (the short way, past reflex corners) are the candidates, the one
-  // nearest the end point p among those whose disc is empty. A wavy cap has
-  // peaks close together whose centres are all near p, and the branch the
-  // Voronoi diagram kept runs into one of them; the nearest either way may
-  // be its neighbour's, and an edge hung on that one folds back. Where the
-  // feet have met, or passed each other (the discretised end lies a few
-  // chords off), or no peak between them has an empty disc, the peaks
-  // within the end's radius r along the boundary either way from each foot
-  // are the candidates: an empty disc first, then the nearest to p.
-  std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
+  // The end of the axis at a node of one edge, between two places of one
+  // smooth curve: the centre of curvature at a curvature peak (an ellipse's
+  // is at x = +-(a^2 - b^2)/a on its major axis), or nothing if no true local
+  // maximum of curvature lies near. Every disc of a branch ending there holds
+  // the boundary from its right foot forwards to its left one (travelling
+  // into the end, the face on the boundary's left), the end's touching point
+  // among it: so where the end's two feet are apart, the peaks on that
+  // stretch (past reflex corners) are the candidates, the one nearest the
+  // node among those whose disc is empty. A wavy cap has peaks close
+  // together whose centres are all near the node, and the branch the Voronoi
+  // diagram kept runs into one of them; the nearest either way may be its
+  // neighbour's, and an edge hung on that one folds back. Where the feet
+  // have met, or passed each other (the discretised end lies a few chords
+  // off), or no peak between them has an empty disc, the peaks within the
+  // node's radius r along the boundary either way from each foot are the
+  // candidates: an empty disc first, then the nearest to the node.
+  std::optional<MedialVertex> curvature_contact(int node) const {
+    const Vec2 p = node_point(node);
+    const double r = graph_.vertices[node_vertex_[node]].r;
+    const std::vector<BoundaryPlace> touches = touches_at(node, p);
     if (touches.empty() || r <= 0) return std::nullopt;
     constexpr int kSamples = 64;  // per radius along the boundary
     const double ds = r / kSamples;
@@ -668,23 +682,22 @@ class Builder {
     std::optional<MedialVertex> best;
     bool best_empty = false;
     if (feet.size() == 2 && feet[0].loop == feet[1].loop) {
-      // From one foot both ways, at most a circle's length of the end's disc,
-      // to the first place beside the other foot; a few places more either
-      // side (the feet are the discretised end's, a chord off).
+      const auto [a, b] = edge_nodes_.at(nodes_[node].edges.front());
+      const Vec2 in = p - node_point(a == node ? b : a);
+      const bool first_right = cross(in, feet[0].point - p) < cross(in, feet[1].point - p);
+      const BoundaryPlace& right = feet[first_right ? 0 : 1];
+      const BoundaryPlace& left = feet[first_right ? 1 : 0];
+      // At most a circle's length of the node's disc along the boundary, to
+      // the first place beside the left foot; a few places more either side
+      // (the feet are the discretised end's, a chord off).
       constexpr int kMargin = kSamples / 8;
       const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
-      std::optional<Run> cap;
-      std::size_t shortest = static_cast<std::size_t>(reach);
-      for (const int way : {1, -1}) {
-        const Walk ahead = walk(feet[0], way, ds, reach + kMargin);
-        for (std::size_t k = 0; k < ahead.places.size() && k < shortest; ++k) {
-          if (distance(ahead.places[k].point, feet[1].point) > ds) continue;
-          cap = join(walk(feet[0], -way, ds, kMargin), feet[0], ahead, k + 1 + kMargin);
-          shortest = k;
-          break;
-        }
+      const Walk ahead = walk(right, 1, ds, reach + kMargin);
+      for (std::size_t k = 0; k < ahead.places.size() && k < static_cast<std::size_t>(reach); ++k) {
+        if (distance(ahead.places[k].point, left.point) > ds) continue;
+        peaks_on(join(walk(right, -1, ds, kMargin), right, ahead, k + 1 + kMargin), p, ds, best, best_empty);
+        break;
       }
-      if (cap) peaks_on(*cap, p, ds, best, best_empty);
       if (best_empty) return best;
       best.reset();
     }
