@@ -576,10 +576,11 @@ class Builder {
 
   // A place on a loop moved by arc length ds along the loop's order (way +1)
   // or against it (-1), across tangent joins (a closed curve's seam is one)
-  // and reflex corners, past which the boundary a disc touches goes on
-  // (crossed says one was passed); false at a convex corner, where the axis
-  // ends in the corner's flare and no curvature contact can lie beyond.
-  bool advance(BoundaryPlace& q, int way, double ds, bool& crossed) const {
+  // and, if past_reflex, reflex corners, past which the boundary a disc
+  // touches goes on (crossed says one was passed); false at any other
+  // corner (at a convex one the axis ends in the corner's flare and no
+  // curvature contact can lie beyond).
+  bool advance(BoundaryPlace& q, int way, double ds, bool past_reflex, bool& crossed) const {
     crossed = false;
     const BoundaryEdge& edge = index_.edge(q.loop, q.edge);
     const double sense = (edge.t_end >= edge.t_start ? 1.0 : -1.0) * way;
@@ -592,7 +593,7 @@ class Builder {
     const int count = index_.edge_count(q.loop);
     const int vertex = way > 0 ? (q.edge + 1) % count : q.edge;
     if (index_.is_corner(q.loop, vertex)) {
-      if (!index_.is_reflex(q.loop, vertex)) return false;
+      if (!past_reflex || !index_.is_reflex(q.loop, vertex)) return false;
       crossed = true;
     }
     const int next = way > 0 ? (q.edge + 1) % count : (q.edge + count - 1) % count;
@@ -603,7 +604,7 @@ class Builder {
 
   // Places along the boundary about ds apart, in order. cut[i] says a reflex
   // corner lies between places i and i + 1, cut_front and cut_back that a
-  // convex corner cut the run short: a curvature peak is a peak among its
+  // corner cut the run short: a curvature peak is a peak among its
   // neighbours on its side of a corner, and may lie at a corner.
   struct Run {
     std::vector<BoundaryPlace> places;
@@ -614,15 +615,15 @@ class Builder {
   struct Walk {
     std::vector<BoundaryPlace> places;  // from nearest the start on, the start left out
     std::vector<bool> crossed;          // a reflex corner was passed on the way to the place
-    bool stopped = false;               // at a convex corner
+    bool stopped = false;               // at a corner
   };
 
-  Walk walk(const BoundaryPlace& from, int way, double ds, int steps) const {
+  Walk walk(const BoundaryPlace& from, int way, double ds, int steps, bool past_reflex) const {
     Walk w;
     BoundaryPlace q = from;
     for (int k = 0; k < steps; ++k) {
       bool crossed = false;
-      if (!advance(q, way, ds, crossed)) {
+      if (!advance(q, way, ds, past_reflex, crossed)) {
         w.stopped = true;
         break;
       }
@@ -666,7 +667,11 @@ class Builder {
   // have met, or passed each other (the discretised end lies a few chords
   // off), or no peak between them has an empty disc, the peaks within the
   // node's radius r along the boundary either way from each foot are the
-  // candidates: an empty disc first, then the nearest to the node.
+  // candidates: an empty disc first, then the nearest to the node. Each
+  // foot's own run then, up to any corner (beside a reflex corner the feet
+  // may lie on either side of it, and the peak on the other side's), but
+  // past reflex corners where the feet have met in one place: a nearly flat
+  // one at the seam of a closed B-spline may hide the peak just beyond.
   std::optional<MedialVertex> curvature_contact(int node) const {
     const Vec2 p = node_point(node);
     const double r = graph_.vertices[node_vertex_[node]].r;
@@ -689,20 +694,24 @@ class Builder {
       const BoundaryPlace& left = feet[first_right ? 1 : 0];
       // At most a circle's length of the node's disc along the boundary, to
       // the first place beside the left foot; a few places more either side
-      // (the feet are the discretised end's, a chord off).
+      // on the feet's own runs (the feet are the discretised end's, a chord
+      // off).
       constexpr int kMargin = kSamples / 8;
       const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
-      const Walk ahead = walk(right, 1, ds, reach + kMargin);
+      const Walk ahead = walk(right, 1, ds, reach + kMargin, true);
       for (std::size_t k = 0; k < ahead.places.size() && k < static_cast<std::size_t>(reach); ++k) {
         if (distance(ahead.places[k].point, left.point) > ds) continue;
-        peaks_on(join(walk(right, -1, ds, kMargin), right, ahead, k + 1 + kMargin), p, ds, best, best_empty);
+        std::size_t count = k + 1;
+        while (count < ahead.places.size() && count < k + 1 + kMargin && !ahead.crossed[count]) ++count;
+        peaks_on(join(walk(right, -1, ds, kMargin, false), right, ahead, count), p, ds, best, best_empty);
         break;
       }
       if (best_empty) return best;
       best.reset();
     }
+    const bool met = feet.size() == 1;
     for (const BoundaryPlace& foot : feet)
-      peaks_on(join(walk(foot, -1, ds, kSamples), foot, walk(foot, 1, ds, kSamples), kSamples), p, ds, best,
+      peaks_on(join(walk(foot, -1, ds, kSamples, met), foot, walk(foot, 1, ds, kSamples, met), kSamples), p, ds, best,
                best_empty);
     return best;
   }
@@ -750,6 +759,8 @@ class Builder {
       v.r = 1.0 / curvature(edge, t);
       v.p = at.point + v.r * perp(edge_tangent(edge, t));
       v.touches = {at};
+      // Every place of a circular arc is a peak, all with one centre: judged once.
+      if (best && distance(v.p, best->p) <= 1e-9 * size() && std::abs(v.r - best->r) <= 1e-9 * size()) continue;
       // A peak whose disc holds boundary is no contact (a ripple beside the
       // true one, when the end stopped short of it): an empty disc wins.
       const bool empty = disc_is_empty(v.p, v.r);
