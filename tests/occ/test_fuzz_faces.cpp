@@ -159,9 +159,11 @@ TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
 // one (an ordinary point of the flare's edge). bspline_3_1347 (a junction
 // touching a reflex corner along both its edges) and bspline_5_1012 (an end
 // node far from its end, the shorter way between its feet the wrong side)
-// went wrong with a first fix. Each axis must pass the medial checks, every
-// edge must run on into its curvature-contact ends (its last step turning by
-// less than a right angle) and the mesh flow must pass its own checks.
+// went wrong with a first fix; bspline_3_982 (two touches of an end node
+// that are one place, beside a reflex corner) with a second. Each axis must
+// pass the medial checks, every edge must run on into its curvature-contact
+// ends (its last step turning by less than a right angle) and the mesh flow
+// must pass its own checks.
 // Takes about 0.3 s.
 TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
   for (const char* name :
@@ -169,7 +171,7 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
         "bspline_1_1002", "bspline_1_1012", "bspline_1_1157",  "bspline_1_1167", "bspline_1_1197", "bspline_1_1302",
         "bspline_1_1347", "bspline_1_1472", "bspline_1_1477",  "bspline_1_1507", "bspline_1_1572", "bspline_1_1622",
         "bspline_1_1887", "bspline_1_1917", "bspline_1_1927",  "bspline_1_1977", "bspline_1_1802", "bspline_1_112",
-        "bspline_1_497",  "bspline_1_1797", "elliptic_1_1724", "bspline_3_1347", "bspline_5_1012"}) {
+        "bspline_1_497",  "bspline_1_1797", "elliptic_1_1724", "bspline_3_1347", "bspline_5_1012", "bspline_3_982"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     MedialAxis axis;
     try {

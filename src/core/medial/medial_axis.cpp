@@ -670,8 +670,9 @@ class Builder {
   // candidates: an empty disc first, then the nearest to the node. Each
   // foot's own run then, up to any corner (beside a reflex corner the feet
   // may lie on either side of it, and the peak on the other side's), but
-  // past reflex corners where the feet have met in one place: a nearly flat
-  // one at the seam of a closed B-spline may hide the peak just beyond.
+  // past reflex corners where the feet have met in one place (the node's
+  // two touches may also meet there, seen from it): a nearly flat one at
+  // the seam of a closed B-spline may hide the peak just beyond.
   std::optional<MedialVertex> curvature_contact(int node) const {
     const Vec2 p = node_point(node);
     const double r = graph_.vertices[node_vertex_[node]].r;
@@ -682,7 +683,7 @@ class Builder {
     std::vector<BoundaryPlace> feet;
     for (BoundaryPlace foot : touches) {
       foot.corner_itself = false;
-      feet.push_back(nearest_on_run(index_, foot, p));
+      add_distinct(feet, nearest_on_run(index_, foot, p), kSamePlace * size());
     }
     std::optional<MedialVertex> best;
     bool best_empty = false;
