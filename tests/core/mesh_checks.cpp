@@ -30,10 +30,13 @@ struct EdgePiece {
 // its ends, from the nodes' places. A node at a vertex has the place of one
 // of the edges meeting there: on any edge, a node may stand for that edge's
 // ends within the mesher's tolerance, or for its own place on its own edge.
-// Of the edges where the side then runs forwards, the one it covers the
-// least of (a tiny edge between two corners is also the end of its
-// neighbours; a closed edge starts and ends at its one vertex).
-std::optional<EdgePiece> boundary_piece(const FaceModel& face, const QuadMesh& mesh, int a, int b) {
+// Of the edges where the side then runs forwards, the shortest piece of
+// curve (a tiny edge between two corners is also the end of its neighbours;
+// a closed edge starts and ends at its one vertex; an edge shorter than the
+// tolerance, a blunt trailing edge, has both its ends at either node, as
+// has the curve it closes). lengths: each edge's, per loop.
+std::optional<EdgePiece> boundary_piece(const FaceModel& face, const QuadMesh& mesh,
+                                        const std::vector<std::vector<double>>& lengths, int a, int b) {
   const NodePlace& pa = mesh.places[a];
   const NodePlace& pb = mesh.places[b];
   if (pa.loop < 0 || pa.loop != pb.loop) return std::nullopt;
@@ -57,7 +60,8 @@ std::optional<EdgePiece> boundary_piece(const FaceModel& face, const QuadMesh& m
     for (double ta : params(static_cast<int>(k), a))
       for (double tb : params(static_cast<int>(k), b)) {
         const double share = (tb - ta) / span;
-        if (share > 0.0 && share < least) least = share, best = EdgePiece{pa.loop, static_cast<int>(k), ta, tb};
+        const double piece = share * lengths[pa.loop][k];
+        if (share > 0.0 && piece < least) least = piece, best = EdgePiece{pa.loop, static_cast<int>(k), ta, tb};
       }
   }
   return best;
@@ -121,6 +125,15 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
     if (!probe.inside(centre) && probe.distance_to_boundary(centre) > sagitta + on_curve)
       problem("element " + std::to_string(e) + " has its centre outside the face at " + where(centre));
   }
+  // An interior node in two elements has them share both its sides: one is flat there.
+  std::vector<int> valence(mesh.nodes.size(), 0);
+  for (const auto& q : mesh.quads)
+    for (int n : q) ++valence[n];
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
+    if (!on_boundary[n] && valence[n] > 0 && valence[n] < 3)
+      problem("interior node " + std::to_string(n) + " at " + where(mesh.nodes[n]) + " is in only " +
+              std::to_string(valence[n]) + " elements");
+  }
   for (std::size_t n = 0; n < mesh.nodes.size(); ++n) {
     if (!on_boundary[n]) continue;
     const double off = probe.distance_to_boundary(mesh.nodes[n]);
@@ -142,9 +155,14 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
     for (int i = 0; i < 4; ++i)
       if (outer.count({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}))
         directed.emplace_back(q[i], q[(i + 1) % 4]);
+  std::vector<std::vector<double>> lengths;
+  for (const Loop& loop : face.loops) {
+    lengths.emplace_back();
+    for (const BoundaryEdge& e : loop.edges) lengths.back().push_back(edge_length(e));
+  }
   double cut_off = 0.0;
   for (const auto& [a, b] : directed) {
-    const auto piece = boundary_piece(face, mesh, a, b);
+    const auto piece = boundary_piece(face, mesh, lengths, a, b);
     if (!piece) {
       problem("the boundary side from " + where(mesh.nodes[a]) + " to " + where(mesh.nodes[b]) +
               " does not run along one edge");
@@ -164,9 +182,8 @@ std::vector<std::string> mesh_validity_problems(const FaceModel& face, const Qua
   }
   // Every boundary loop is covered: the mesh's boundary is as long as the face's, to the chordal error.
   double face_length = 0.0;
-  for (const Loop& loop : face.loops) {
-    for (const BoundaryEdge& e : loop.edges) face_length += edge_length(e);
-  }
+  for (const auto& loop : lengths)
+    for (double length : loop) face_length += length;
   if (boundary_length > face_length * (1.0 + 1e-9) || boundary_length < 0.9 * face_length) {
     problem("the mesh's boundary is " + std::to_string(boundary_length) + " long, the face's " +
             std::to_string(face_length));

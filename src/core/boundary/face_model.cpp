@@ -334,7 +334,13 @@ double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, 
     if (t > lo && t < hi) cuts.push_back(t);
   }
   cuts.push_back(hi);
-  const double reach = distance(evaluate_point(edge, lo), ref) + distance(evaluate_point(edge, hi), ref);
+  // The absolute floor scales with how far the curve reaches from ref: not
+  // from its ends alone, which for a closed curve from ref round to ref (a
+  // blunt trailing edge shorter than the tolerance) lie at ref itself, where
+  // a floor of 0 sent every span to the depth cap (40 s on one aerofoil).
+  double reach = distance(evaluate_point(edge, 0.5 * (lo + hi)), ref);
+  for (double t : cuts) reach = std::max(reach, distance(evaluate_point(edge, t), ref));
+  reach *= 2.0;
   const auto integrand = [&](double t) {
     const CurvePoint cp = evaluate(edge.curve, t);
     return 0.5 * cross(cp.p - ref, cp.d1);

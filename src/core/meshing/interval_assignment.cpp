@@ -175,6 +175,7 @@ class Model {
 
   Outcome solve() const;
   bool complete_at_no_cost(std::vector<double>& x) const;
+  double least_cost(std::vector<double>& x) const;
 
  private:
   std::vector<double> lower_, upper_, cost_;
@@ -212,6 +213,37 @@ bool Model::complete_at_no_cost(std::vector<double>& x) const {
     if (std::abs(residual) > 1e-9) return false;
   }
   return true;
+}
+
+// x holds every integer column; fills in the continuous ones at their least
+// cost, row by row as complete_at_no_cost does (cheapest first: each row's
+// costs rise with the distance from its target, so a column of negative cost
+// is worth using only towards it), and returns the objective; infinite if
+// some row cannot be met.
+double Model::least_cost(std::vector<double>& x) const {
+  std::vector<std::pair<double, int>> free;  // (cost, column)
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    double residual = rows_[r].second;
+    free.clear();
+    for (const auto& [col, coef] : rows_[r].first) {
+      if (integer_[col])
+        residual -= coef * x[col];
+      else
+        free.push_back({cost_[col], col});
+    }
+    std::sort(free.begin(), free.end());
+    for (const auto& [cost, col] : free) {
+      const double coef = rows_[r].first.at(col);
+      x[col] = 0.0;
+      if (residual * coef <= 0.0) continue;
+      x[col] = std::min(upper_[col], residual / coef);
+      residual -= coef * x[col];
+    }
+    if (std::abs(residual) > 1e-9) return kUnbounded;
+  }
+  double total = 0.0;
+  for (std::size_t c = 0; c < x.size(); ++c) total += cost_[c] * x[c];
+  return total;
 }
 
 // CBC's solver keeps global state (CbcMain1): one solve at a time.
@@ -333,18 +365,59 @@ struct BuiltModel {
   std::vector<std::vector<int>> param_columns;  // per block
 };
 
-// weight * |n - goal| as the LP sees it at integer n only: from floor(goal)
-// up one unit the cost changes by weight * (1 - 2 frac), then by weight a
-// unit either way. Breakpoints at integers make the relaxation's optimum
-// integral on chains of equal sides, which spares CBC most of its branching.
-void add_goal_deviation(Model& model, int n, double goal, double weight) {
-  const double base = std::floor(goal);
-  const double frac = goal - base;
+// The cost of n intervals on a segment wanting `goal` (g = max(goal, 1), as a
+// segment shorter than the target still gets one interval): |n - g| / g
+// within one interval below the goal and anywhere above it, so that a goal
+// alone rounds to the nearest count; further below it grows as g / n, how
+// many times too large the elements are, as fast as n / g grows for too
+// small ones. (|n - g| / g all the way charged at most 1 for any coarsening
+// but without bound for refining, so a side that must match a much shorter
+// one took the short one's count: a wedge or a ring with elements several
+// times the target size.) Between two goals forced equal the optimum is then
+// near their geometric mean. Coarser than g / kSteepRatio the cost goes on
+// linearly at its slope there: no unit of deviation costs more than
+// kSteepRatio, so the facing and slit rows can stay above them all.
+constexpr double kSteepRatio = 8.0;
+
+double goal_cost(double n, double g) {
+  if (n >= g - 1.0) return std::abs(n - g) / g;
+  return 1.0 / g + g / n - g / (g - 1.0);  // continuous at g - 1, and convex
+}
+
+// True if n lies where goal_cost is |n - g| / g.
+bool within_relative(double n, const IntervalSegment& seg) {
+  return n >= std::max(seg.goal, 1.0) - 1.0 - 1e-9;
+}
+
+// The cost as the LP sees it at integer n: from floor(goal) up one unit it
+// changes by (1 - 2 frac) / g, then by 1 / g a unit. Going down: `ratio`
+// false, 1 / g a unit (|n - g| / g all the way: the first stage, see
+// assign_intervals); true, pieces between breakpoints at their secants'
+// slopes, exact at every integer below 32 and steps of a sixteenth of n
+// above (a few dozen columns on a segment of hundreds of intervals).
+// Breakpoints at integers make the relaxation's optimum integral on chains
+// of equal sides, which spares CBC most of its branching. Returns the
+// steepest unit cost going down.
+double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool ratio) {
+  const double g = std::max(seg.goal, 1.0);
+  const double base = std::floor(seg.goal);
   LinearExpr row = column(n);
-  row[model.add_column(0.0, 1.0, weight * (1.0 - 2.0 * frac), false)] -= 1.0;
-  row[model.add_column(0.0, kUnbounded, weight, false)] -= 1.0;
-  row[model.add_column(0.0, kUnbounded, weight, false)] += 1.0;
+  row[model.add_column(0.0, 1.0, (1.0 - 2.0 * (seg.goal - base)) / g, false)] -= 1.0;
+  row[model.add_column(0.0, kUnbounded, 1.0 / g, false)] -= 1.0;
+  double steepest = 1.0 / g, k = base;
+  if (ratio) {
+    const double lowest = std::max<double>(seg.min_count, std::ceil(g / kSteepRatio));
+    while (k > lowest) {
+      const double next = std::max(lowest, k - std::max(1.0, std::floor(k / 16.0)));
+      steepest = (goal_cost(next, g) - goal_cost(k, g)) / (k - next);
+      row[model.add_column(0.0, k - next, steepest, false)] += 1.0;
+      k = next;
+    }
+    if (k > seg.min_count) steepest = std::max(steepest, goal_cost(k - 1.0, g) - goal_cost(k, g));
+  }
+  if (!ratio || k > seg.min_count) row[model.add_column(0.0, kUnbounded, steepest, false)] += 1.0;
   model.add_equation(row, base, true);
+  return steepest;
 }
 
 // The midpoint equations L_i = c_{i-1} + c_{i+1}; returns the c columns.
@@ -379,19 +452,21 @@ std::vector<int> add_two_sided(Model& model, const LinearExpr& n0, const LinearE
 }
 
 // Blocks [0, block_limit) only, so that a failure can be traced to a block.
-BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
+BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio) {
   BuiltModel built;
   Model& model = built.model;
-  double smallest_weight = 1.0, total_goal = 0.0;
+  double smallest_weight = 1.0, steepest = 1.0, total_goal = 0.0;
   for (const IntervalSegment& seg : problem.segments) {
     const double lower = seg.min_count;
-    const double weight = 1.0 / std::max(seg.goal, 1.0);
     const int n = model.add_integer(lower);
-    add_goal_deviation(model, n, seg.goal, weight);
+    steepest = std::max(steepest, add_goal_deviation(model, n, seg, ratio));
     built.count_columns.push_back(n);
-    smallest_weight = std::min(smallest_weight, weight);
+    smallest_weight = std::min(smallest_weight, 1.0 / std::max(seg.goal, 1.0));
     total_goal += std::max(seg.goal, lower);
   }
+  // Facing sides short of each other and slits that do not close fold the
+  // lattice: dearer than any unit of goal deviation.
+  const double fold = 4.0 * steepest;
   // Far below one unit of the goal deviation, so it only breaks ties.
   const double balance = 0.01 * smallest_weight / (1.0 + total_goal);
   // Last, among answers alike in both, the fewest intervals: all counts
@@ -436,8 +511,8 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
           add_to(gap, y[t], step_y[normal]);
           add_to(gap, x[s], -step_x[normal]);
           add_to(gap, y[s], -step_y[normal]);
-          gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;  // surplus
-          gap[model.add_column(0.0, kUnbounded, 4.0, false)] += 1.0;  // shortfall
+          gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;   // surplus
+          gap[model.add_column(0.0, kUnbounded, fold, false)] += 1.0;  // shortfall
           model.add_equation(gap, 1.0);
         }
         // A segment the outline runs along twice (a split to a hole) whose
@@ -466,8 +541,8 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit) {
               if (turning != -2 && turning != 6) continue;
               const auto [x0, y0] = place(i, a + 1);
               const auto [x1, y1] = place(j, static_cast<size_t>(found - later.begin()));
-              model.add_deviation(difference(x1, x0), 0.0, 4.0);
-              model.add_deviation(difference(y1, y0), 0.0, 4.0);
+              model.add_deviation(difference(x1, x0), 0.0, fold);
+              model.add_deviation(difference(y1, y0), 0.0, fold);
             }
           }
         }
@@ -645,7 +720,7 @@ size_t first_impossible_block(const IntervalProblem& problem) {
   size_t feasible = 0, infeasible = problem.blocks.size();
   while (infeasible - feasible > 1) {
     const size_t mid = (feasible + infeasible) / 2;
-    if (build(problem, mid).model.solve().infeasible)
+    if (build(problem, mid, false).model.solve().infeasible)
       infeasible = mid;
     else
       feasible = mid;
@@ -661,7 +736,16 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
     if (problem.blocks[b].kind == BlockTemplate::Submap) submap_directions(problem.blocks[b], b);
 
   if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
-  const BuiltModel built = build(problem, problem.blocks.size());
+  // First with |n - g| / g all the way down: if no count then lies more than
+  // one interval below its goal, that answer costs the same in goal_cost and
+  // nothing can cost less there (goal_cost is never below |n - g| / g, nor
+  // are the fold rows cheaper), so it is kept: faces without such a conflict
+  // keep the counts they had before goal_cost. Else solved again in goal_cost,
+  // and that answer taken only if it costs less than the first one does in
+  // goal_cost (not one of the answers of equal cost the solver meets first
+  // on another path: rings of segments alike flipped, and smoothing's result
+  // with them).
+  BuiltModel built = build(problem, problem.blocks.size(), false);
   Model::Outcome outcome = direct_outcome(problem, built);
   if (outcome.values.empty()) outcome = built.model.solve();
   if (outcome.infeasible) {
@@ -670,7 +754,29 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
                               " sides): its template's conditions cannot hold together with those of the blocks "
                               "before it, whatever the goals");
   }
+  bool coarse = false;
+  for (size_t s = 0; s < problem.segments.size(); ++s)
+    coarse = coarse || !within_relative(outcome.values[built.count_columns[s]], problem.segments[s]);
   IntervalAssignment answer = read_answer(built, outcome.values);
+  if (coarse) {
+    const BuiltModel second = build(problem, problem.blocks.size(), true);
+    Model::Outcome better;
+    try {
+      better = second.model.solve();
+    } catch (const std::runtime_error&) {  // no answer within CBC's time: the first stands
+      better.infeasible = true;
+    }
+    std::vector<double> first(second.model.columns(), 0.0);
+    for (size_t s = 0; s < answer.counts.size(); ++s) first[second.count_columns[s]] = answer.counts[s];
+    for (size_t b = 0; b < answer.params.size(); ++b)
+      for (size_t i = 0; i < answer.params[b].size(); ++i) first[second.param_columns[b][i]] = answer.params[b][i];
+    const double kept = second.model.least_cost(first);
+    std::vector<double> found = better.values;
+    if (!better.infeasible && second.model.least_cost(found) < kept - 1e-12 * (1.0 + std::abs(kept))) {
+      outcome = better;
+      answer = read_answer(second, better.values);
+    }
+  }
   if (!outcome.proven_optimal)
     answer.notes.push_back(
         "interval assignment: CBC stopped at its time limit; the counts are the best found, "

@@ -267,6 +267,11 @@ class BlockMesher {
   BlockMesh finish() {
     BlockMesh result;
     const auto t2 = std::chrono::steady_clock::now();
+    if (const int doublets = collapse_doublets())
+      result.notes.push_back(std::to_string(doublets) +
+                             " interior nodes of two elements (a singularity of k <= -2 fixed at one point, or "
+                             "splits bending at one point whose elements add up to two) removed, their two "
+                             "elements joined into one");
     if (options_.smooth) {
       // Boundary nodes slide along their curves (nodes facing each other
       // across a thin gap line up), but no interval comes to turn by more
@@ -306,6 +311,9 @@ class BlockMesher {
     result.mesh = std::move(mesh_);
     return result;
   }
+
+  // The node that node n became when finish() removed nodes (-1: removed).
+  int renumbered(int n) const { return renumbered_.empty() ? n : renumbered_[n]; }
 
   const std::vector<BlockShape>& shapes() const { return shapes_; }
   const std::vector<Segment>& segments() const { return segments_; }
@@ -865,6 +873,72 @@ class BlockMesher {
     return straightened;
   }
 
+  // An interior node in only two elements (a doublet) has them share both
+  // its sides, so one of them is flat there however the node is placed:
+  // blocks give one when their corners at a split's bend add up to two
+  // elements. The two elements (n, b, c, a) and (n, a, d, b) become one,
+  // (b, c, a, d), and the node goes; every side but the two inner ones
+  // stays, so the mesh stays conforming. Repeated while joining makes new
+  // ones. Returns the number of nodes removed.
+  int collapse_doublets() {
+    int removed = 0;
+    for (;;) {
+      const QuadsAtNodes at = quads_at_nodes();
+      std::vector<char> quad_gone(mesh_.quads.size(), 0), node_gone(mesh_.nodes.size(), 0);
+      bool changed = false;
+      for (std::size_t n = 0; n < mesh_.nodes.size(); ++n) {
+        if (mesh_.places[n].loop >= 0 || at.first[n + 1] - at.first[n] != 2) continue;
+        const int e1 = at.quads[at.first[n]], e2 = at.quads[at.first[n] + 1];
+        if (quad_gone[e1] || quad_gone[e2]) continue;
+        const auto from_node = [&](int e) {
+          std::array<int, 4> q = mesh_.quads[e];
+          std::rotate(q.begin(), std::find(q.begin(), q.end(), static_cast<int>(n)), q.end());
+          return q;
+        };
+        const std::array<int, 4> q1 = from_node(e1), q2 = from_node(e2);
+        if (q2[1] != q1[3] || q2[3] != q1[1] || q1[2] == q2[2]) continue;
+        mesh_.quads[e1] = {q1[1], q1[2], q1[3], q2[2]};
+        quad_gone[e2] = 1;
+        node_gone[n] = 1;
+        changed = true;
+        ++removed;
+      }
+      if (!changed) break;
+      std::vector<int> new_index(mesh_.nodes.size(), -1);
+      int kept = 0;
+      for (std::size_t n = 0; n < mesh_.nodes.size(); ++n) {
+        if (node_gone[n]) continue;
+        new_index[n] = kept;
+        mesh_.nodes[kept] = mesh_.nodes[n];
+        mesh_.places[kept] = mesh_.places[n];
+        ++kept;
+      }
+      mesh_.nodes.resize(kept);
+      mesh_.places.resize(kept);
+      std::size_t quads = 0;
+      for (std::size_t e = 0; e < mesh_.quads.size(); ++e) {
+        if (quad_gone[e]) continue;
+        for (int& v : mesh_.quads[e]) v = new_index[v];
+        mesh_.quads[quads] = mesh_.quads[e];
+        if (!mesh_.block_of_quad.empty()) mesh_.block_of_quad[quads] = mesh_.block_of_quad[e];
+        ++quads;
+      }
+      mesh_.quads.resize(quads);
+      if (!mesh_.block_of_quad.empty()) mesh_.block_of_quad.resize(quads);
+      for (Segment& s : segments_) {
+        for (int& v : s.nodes) v = new_index[v];
+        s.nodes.erase(std::remove(s.nodes.begin(), s.nodes.end(), -1), s.nodes.end());
+      }
+      for (int& v : vertex_of_end_) v = v < 0 ? v : new_index[v];
+      if (renumbered_.empty()) {
+        renumbered_ = std::move(new_index);
+      } else {
+        for (int& v : renumbered_) v = v < 0 ? v : new_index[v];
+      }
+    }
+    return removed;
+  }
+
   // The mesh's own checks: conformity, orientation, area.
   void check_mesh() const {
     const std::size_t nodes = mesh_.nodes.size();
@@ -986,6 +1060,7 @@ class BlockMesher {
   std::vector<std::vector<std::vector<PieceUse>>> uses_;  // per block, per side
   std::vector<BlockShape> shapes_;
   std::vector<int> vertex_of_end_;  // per segment end (2 s + 0 start, 2 s + 1 end)
+  std::vector<int> renumbered_;     // old node -> new after collapse_doublets (-1: removed), empty if none
   QuadMesh mesh_;
 };
 
@@ -1336,6 +1411,11 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     mesh.notes.insert(mesh.notes.begin(), relaxed[f].begin(), relaxed[f].end());
     if (f == 0) mesh.notes.insert(mesh.notes.end(), intervals.notes.begin(), intervals.notes.end());
     result.faces.push_back(std::move(mesh));
+  }
+  // Only interior nodes are ever removed: the shared boundary nodes stay, renumbered.
+  for (SharedPiece& piece : result.shared) {
+    for (int& n : piece.nodes_a) n = meshers[piece.face_a]->renumbered(n);
+    for (int& n : piece.nodes_b) n = meshers[piece.face_b]->renumbered(n);
   }
   return result;
 }

@@ -30,7 +30,9 @@ struct BlockMesh {
 // blocks' templates, polygon blocks' corners that are valence-3 points on a
 // neighbour's side are taken as flat and the assignment retried (a note says
 // so); when smoothing with boundary nodes fixed leaves a folded element, it
-// runs again letting them slide along their curves. Throws InputError for a
+// runs again letting them slide along their curves; an interior node in only
+// two elements (blocks' corners at a split's bend adding up to two) has the
+// two joined into one, with a note. Throws InputError for a
 // size that is not a positive number or an order other than 1 or 2, and
 // SelfCheckError naming the face when the mesh fails its own checks: conformity
 // (every inner edge in two quads, every outer one on the boundary), no inverted
