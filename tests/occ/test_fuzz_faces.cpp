@@ -55,6 +55,13 @@
 // bspline_3_387: a singularity fixed near the end of a branch into a
 // curvature contact, where the searches for its split's two touches passed
 // each other (the block beyond was turned inside out).
+// bspline_1_717: a k = -1 merged with a +1 and a -1 a hair apart on one
+// edge (where a pruned ripple branch left it), each cut on its own: two
+// splits at one place with a block of no area, turned inside out, between
+// them (now one split takes both). aerofoil_1_116: an aerofoil slot whose
+// trailing edge is closed by an edge 5e-7 long with a concave corner's
+// split at each end; OCC's splitter merged the two ends and left that edge
+// as a degenerate wire of its own in a block face (now dropped).
 // aerofoil_3_201 and aerofoil_3_288: aerofoils whose meshes were right but
 // whose area checks (the mesher's and the tests') bounded what the chords
 // cut off by chord x midpoint sagitta, 8x short across a leading edge; now
@@ -267,22 +274,6 @@ TEST(FuzzFaces, ElementCountFollowsTheTargetSize) {
   }
 }
 
-// A face whose last decomposition attempt (corners typed by their angles)
-// gave a block turned inside out, its outline running clockwise, with exit
-// code 0: it must now pass the decomposition checks or fail loudly.
-TEST(FuzzFaces, NoBlockTurnedInsideOut) {
-  const FaceModel face = face_model_from_brep_string(fuzz_face_text("bspline_1_717"), "bspline_1_717");
-  const MedialAxis axis = compute_medial_axis(face);
-  const MeshFlow flow = compute_mesh_flow(face, axis);
-  try {
-    const Decomposition d = decompose(face, axis, flow, {});
-    EXPECT_TRUE(test::decomposition_problems(face, flow, d).empty());
-    for (const Block& b : d.blocks) EXPECT_GT(b.area, 0.0);
-  } catch (const SelfCheckError& e) {
-    EXPECT_NE(std::string(e.what()).find("bspline_1_717"), std::string::npos) << e.what();
-  }
-}
-
 // The relaxed rings: the pentagon's corner taken as flat cancels its k = +1
 // against the -1 on its corner, so the mesh has no irregular interior node,
 // and says what was relaxed.
@@ -316,7 +307,7 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
            {"filleted_1_490", false},  {"filleted_1_910", false},  {"filleted_1_990", false},
            {"filleted_1_1490", false}, {"filleted_1_880", false},  {"filleted_1_1360", false},
            {"bspline_1_1212", false},  {"bspline_1_1442", false},  {"filleted_1_1205", false},
-           {"bspline_3_387", false}}) {
+           {"bspline_3_387", false},   {"bspline_1_717", false},   {"aerofoil_1_116", false}}) {
     const std::string text = fuzz_face_text(name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);
@@ -346,7 +337,10 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
       EXPECT_TRUE(BRepCheck_Analyzer(piece).IsValid()) << name;
       occ_area += area_of(piece);
     }
-    EXPECT_NEAR(occ_area, area_of(occ_face), 1e-8 * face.area) << name;
+    // Splitting B-spline edges moves them within OCC's tolerance: on a face a
+    // fortieth of a unit across (aerofoil_1_116) that term, tolerance x size,
+    // is the larger, as split_face's own check allows.
+    EXPECT_NEAR(occ_area, area_of(occ_face), 1e-8 * face.area + face.tolerance * face.size) << name;
   }
 }
 

@@ -66,6 +66,7 @@ class Builder {
     join_isolated_finite_contacts();
     keep_connected_axis();
     classify_nodes();
+    repair_flipped_junction_pairs();
     trace_chains();
     return std::move(axis_);
   }
@@ -483,18 +484,32 @@ class Builder {
   }
 
   // The exact junction: the point equally far from three candidate places
-  // with no candidate nearer, closest to where the Voronoi diagram put it.
+  // with no candidate nearer, touching both places of as many of the node's
+  // own edges as can be (near a point where four places are almost on one
+  // circle, two nodes close together would otherwise both take the junction
+  // nearer to them, and edges would meet a junction that does not touch
+  // their places), then closest to where the Voronoi diagram put it.
   void make_junction(int node, Vec2 p) {
     MedialVertex v;
     v.kind = MedialVertexKind::Junction;
     v.p = p;
     const std::vector<BoundaryPlace> candidates = junction_candidates(node, p);
-    double best = 1e300;
+    const auto own_edges_touched = [&](const Equidistant& exact) {
+      int count = 0;
+      for (int e : nodes_[node].edges) {
+        bool both = true;
+        for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right})
+          both = both && std::abs(distance(place_of(site, exact.p).point, exact.p) - exact.r) <= 1e-9 * size();
+        count += both ? 1 : 0;
+      }
+      return count;
+    };
+    std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       for (std::size_t j = i + 1; j < candidates.size(); ++j) {
         for (std::size_t k = j + 1; k < candidates.size(); ++k) {
           const Equidistant exact = equidistant(index_, p, {candidates[i], candidates[j], candidates[k]});
-          if (!exact.converged || distance(exact.p, p) >= best) continue;
+          if (!exact.converged) continue;
           // Two of the places slid into one (from a place on a thin face's
           // far side, the search can run round an end onto the near side):
           // then any point of the other two's bisector solves the equations,
@@ -507,6 +522,8 @@ class Builder {
             return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
           };
           if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) continue;
+          const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
+          if (!(score < best)) continue;
           std::vector<BoundaryPlace> touches;
           bool empty = true;
           for (const BoundaryPlace& c : candidates) {
@@ -516,7 +533,7 @@ class Builder {
             if (d <= exact.r * (1 + 1e-9)) touches.push_back(at);
           }
           if (!empty) continue;
-          best = distance(exact.p, p);
+          best = score;
           v.p = exact.p;
           v.r = exact.r;
           v.touches = touches;
@@ -536,6 +553,79 @@ class Builder {
       return c.loop == place.loop && index_.is_reflex(c.loop, c.vertex) &&
              distance(c.position, place.point) <= kSamePlace * size();
     });
+  }
+
+  // Where four places lie almost on one circle the axis has two junctions
+  // joined by a short edge, and the discretised diagram may pair the places
+  // the other way round from the exact junctions (a flip): an edge then meets
+  // the junction that does not touch its two places, and the short edge is
+  // the bisector of the wrong two. Such edges are moved to the junction that
+  // touches both their places, and the short edge becomes the bisector of
+  // the two places both junctions touch.
+  void repair_flipped_junction_pairs() {
+    for (std::size_t a = 0; a < nodes_.size(); ++a) {
+      if (!junction_node(static_cast<int>(a))) continue;
+      for (const int s : std::vector<int>(nodes_[a].edges)) {
+        const auto [x, y] = edge_nodes_.at(s);
+        const int b = x == static_cast<int>(a) ? y : x;
+        if (b > static_cast<int>(a) && junction_node(b)) repair_pair(static_cast<int>(a), b, s);
+      }
+    }
+  }
+
+  bool junction_node(int node) const {
+    return nodes_[node].vertex >= 0 && axis_.vertices[nodes_[node].vertex].kind == MedialVertexKind::Junction;
+  }
+
+  // Whether the junction's disc touches the site's place.
+  bool touches_site(const MedialVertex& v, const Site& site) const {
+    return std::abs(distance(place_of(site, v.p).point, v.p) - v.r) <= 1e-9 * size();
+  }
+  bool touches_edge(const MedialVertex& v, int voronoi_edge) const {
+    return touches_site(v, graph_.edges[voronoi_edge].left) && touches_site(v, graph_.edges[voronoi_edge].right);
+  }
+
+  void repair_pair(int a, int b, int s) {
+    const MedialVertex &va = axis_.vertices[nodes_[a].vertex], &vb = axis_.vertices[nodes_[b].vertex];
+    if (distance(va.p, vb.p) > kPointSpacing * size() || (touches_edge(va, s) && touches_edge(vb, s))) return;
+    std::vector<int> to_b, to_a;
+    for (int f : nodes_[a].edges)
+      if (f != s && !touches_edge(va, f) && touches_edge(vb, f)) to_b.push_back(f);
+    for (int f : nodes_[b].edges)
+      if (f != s && !touches_edge(vb, f) && touches_edge(va, f)) to_a.push_back(f);
+    if (to_a.empty() && to_b.empty()) return;
+    const int degree_a = static_cast<int>(nodes_[a].edges.size() - to_b.size() + to_a.size());
+    const int degree_b = static_cast<int>(nodes_[b].edges.size() - to_a.size() + to_b.size());
+    if (degree_a < 3 || degree_b < 3) return;
+    // The places both junctions touch, from the sites of the edges there.
+    std::vector<Site> shared;
+    std::vector<BoundaryPlace> shared_places;
+    for (const int node : {a, b}) {
+      for (int f : nodes_[node].edges) {
+        if (f == s) continue;
+        for (const Site& site : {graph_.edges[f].left, graph_.edges[f].right}) {
+          if (!touches_site(va, site) || !touches_site(vb, site)) continue;
+          const BoundaryPlace place = place_of(site, va.p);
+          if (std::any_of(shared_places.begin(), shared_places.end(),
+                          [&](const BoundaryPlace& q) { return same_place(q, place, kSamePlace * size()); }))
+            continue;
+          shared.push_back(site);
+          shared_places.push_back(place);
+        }
+      }
+    }
+    if (shared.size() != 2) return;
+    const auto move = [&](int f, int from, int to) {
+      auto& ends = edge_nodes_.at(f);
+      (ends.first == from ? ends.first : ends.second) = to;
+      auto& list = nodes_[from].edges;
+      list.erase(std::remove(list.begin(), list.end(), f), list.end());
+      nodes_[to].edges.push_back(f);
+    };
+    for (int f : to_b) move(f, a, b);
+    for (int f : to_a) move(f, b, a);
+    graph_.edges[s].left = shared[0];
+    graph_.edges[s].right = shared[1];
   }
 
   void make_end(int node, Vec2 p) {
