@@ -227,6 +227,23 @@ std::string brep_text(const TopoDS_Shape& shape) {
   return text.str();
 }
 
+// The face without its wires shorter than `length`. Where a split ends at
+// each end of a boundary edge barely longer than OCC's tolerance (the closing
+// edge of an aerofoil's trailing edge, 5e-7 long, with a concave corner's
+// split at both ends), the splitter merges the two ends and leaves that edge
+// as a wire of its own, one degenerate edge enclosing nothing, and the block
+// face is invalid (BadOrientationOfSubshape).
+TopoDS_Face without_short_wires(const TopoDS_Face& face, double length) {
+  TopoDS_Face result = TopoDS::Face(face.EmptyCopied());
+  BRep_Builder builder;
+  for (TopExp_Explorer it(face, TopAbs_WIRE); it.More(); it.Next()) {
+    GProp_GProps props;
+    BRepGProp::LinearProperties(it.Current(), props);
+    if (props.Mass() > length) builder.Add(result, it.Current());
+  }
+  return result;
+}
+
 template <typename T>
 std::vector<TopoDS_Shape> shapes(const std::vector<T>& items) {
   return std::vector<TopoDS_Shape>(items.begin(), items.end());
@@ -282,6 +299,7 @@ std::vector<TopoDS_Face> split_face(const TopoDS_Face& face, const Frame& frame,
     Area sum;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const std::string block = "block face " + std::to_string(i + 1) + " of " + std::to_string(blocks.size());
+      if (!BRepCheck_Analyzer(blocks[i]).IsValid()) blocks[i] = without_short_wires(blocks[i], snap);
       if (!BRepCheck_Analyzer(blocks[i]).IsValid()) throw InputError(block + " is not valid (BRepCheck_Analyzer)");
       const Area area = area_of(blocks[i]);
       if (!(area.value > 0.0)) throw InputError(block + " has area " + std::to_string(area.value) + " (BRepGProp)");

@@ -18,8 +18,10 @@ std::vector<TopoDS_Edge> split_edges_3d(const Frame& frame, const std::vector<st
 // The block faces the splits cut the face into. frame is the face's own
 // (FaceModel::frame). Split ends within 1e-6 of the face size of the boundary
 // or of another split are moved onto it first. Every block is checked valid
-// (BRepCheck_Analyzer) and the block areas must add up to the face's area;
-// a failed check throws InputError naming it.
+// (BRepCheck_Analyzer; an invalid one first loses any wire shorter than that
+// snap distance, a degenerate edge the splitter leaves where two splits end
+// at both ends of a tiny boundary edge) and the block areas must add up to
+// the face's area; a failed check throws InputError naming it.
 std::vector<TopoDS_Face> split_face(const TopoDS_Face& face, const Frame& frame,
                                     const std::vector<std::vector<Vec2>>& polylines);
 

@@ -1,6 +1,6 @@
 // medialmesh_fuzz: random faces through every stage that exists.
 //
-//   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS]
+//   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...]
 //
 // Builds N random OCC faces of seven families (filleted polygons with holes,
 // plates with notches and slots, closed B-spline outlines, thin strips with
@@ -18,7 +18,9 @@
 // hangs and broken invariants per family and the stage each face stopped in,
 // writes every face that is not ok as DIR/<family>_<seed>_<i>.brep with a
 // line in DIR/fuzz.log, and exits with 1 if any face crashed, hung, broke an
-// invariant or hit an internal error.
+// invariant or hit an internal error. --families runs only the faces of
+// those families among the N (each the face a full run makes), to compare
+// one stage's families before and after a change.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -477,6 +479,7 @@ struct Options {
   int count = 100;
   std::string out = "fuzz_out";
   unsigned time_limit = 60;
+  std::vector<std::string> families;  // all if empty
 };
 
 Options parse(int argc, char** argv) {
@@ -493,6 +496,13 @@ Options parse(int argc, char** argv) {
       o.out = v;
     } else if (a == "--time-limit") {
       o.time_limit = static_cast<unsigned>(std::stoul(v));
+    } else if (a == "--families") {
+      std::stringstream list(v);
+      for (std::string name; std::getline(list, name, ',');) {
+        if (std::none_of(kFamilies.begin(), kFamilies.end(), [&](const auto& f) { return f.first == name; }))
+          throw std::invalid_argument("no family " + name);
+        o.families.push_back(name);
+      }
     } else {
       throw std::invalid_argument("unknown option " + a);
     }
@@ -508,7 +518,7 @@ int main(int argc, char** argv) {
     o = parse(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "medialmesh_fuzz: " << e.what()
-              << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS]\n";
+              << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...]\n";
     return 2;
   }
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -520,6 +530,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < o.count; ++i) {
     const Numbered numbered = number_of(o.seed, i);
     const std::string family = kFamilies[numbered.family].first;
+    if (!o.families.empty() && std::find(o.families.begin(), o.families.end(), family) == o.families.end()) continue;
     const std::string name = family + "_" + std::to_string(o.seed) + "_" + std::to_string(numbered.number);
     const std::string path = o.out + "/" + name + ".brep";
     int pipe_fds[2];
@@ -586,7 +597,11 @@ int main(int argc, char** argv) {
       log << path << ": " << kOutcomeNames[outcome] << " in " << stage << ": " << message << "\n";
     }
   }
-  std::cout << "seed " << o.seed << ", " << o.count << " faces\n";
+  int ran = 0;
+  for (const int c : counts) ran += c;
+  std::cout << "seed " << o.seed << ", " << ran << " faces";
+  if (ran != o.count) std::cout << " of the first " << o.count;
+  std::cout << "\n";
   for (int k = 0; k < kOutcomes; ++k) {
     std::cout << "  " << kOutcomeNames[k] << ": " << counts[k];
     for (const auto& [family, c] : by_family) {

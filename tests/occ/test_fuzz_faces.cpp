@@ -31,8 +31,11 @@
 // cut there on its own (a sliver block whose outline crossed itself; now
 // the junction's cut takes it). bspline_2_792: an axis missing the branch
 // into one lobe, whose k = -1 went into a triangle on the far side of the
-// face while the areas still added up (now a self-check failure, and the
-// fix-everything fallback decomposes it). filleted_1_915, _950, _1820,
+// face while the areas still added up (then a self-check failure, and the
+// fix-everything fallback decomposed it; since the branch towards its
+// reflex corner ends at the corner's contact between its feet, not at the
+// peak beyond the corner it folded back to, it decomposes without the
+// fallback). filleted_1_915, _950, _1820,
 // _1980 and filleted_3_275: filleted stars with holes whose axis points
 // wobble back past a junction, so the first step of an edge pointed the
 // wrong way and the walk took the edges round the junction out of order
@@ -52,6 +55,13 @@
 // bspline_3_387: a singularity fixed near the end of a branch into a
 // curvature contact, where the searches for its split's two touches passed
 // each other (the block beyond was turned inside out).
+// bspline_1_717: a k = -1 merged with a +1 and a -1 a hair apart on one
+// edge (where a pruned ripple branch left it), each cut on its own: two
+// splits at one place with a block of no area, turned inside out, between
+// them (now one split takes both). aerofoil_1_116: an aerofoil slot whose
+// trailing edge is closed by an edge 5e-7 long with a concave corner's
+// split at each end; OCC's splitter merged the two ends and left that edge
+// as a degenerate wire of its own in a block face (now dropped).
 // aerofoil_3_201 and aerofoil_3_288: aerofoils whose meshes were right but
 // whose area checks (the mesher's and the tests') bounded what the chords
 // cut off by chord x midpoint sagitta, 8x short across a leading edge; now
@@ -71,6 +81,8 @@
 // tolerance: the tests' area check took the aerofoil's whole curve for the
 // trailing-edge side (a right mesh called wrong, and 40 s in the area
 // integral of a closed curve from its own end).
+// bspline_1_147, _1157, _112, _1977 and elliptic_1_1724: one of each medial
+// axis defect of BranchesRunIntoTheirOwnCurvatureContacts below.
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -89,6 +101,7 @@
 #include "occ/occ_reader.hpp"
 #include "occ/occ_split.hpp"
 #include "pipeline/pipeline.hpp"
+#include "singularity/mesh_flow.hpp"
 
 namespace mm {
 namespace {
@@ -108,11 +121,12 @@ double area_of(const TopoDS_Face& face) {
 
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name :
-       {"strip_7_63",     "strip_7_313",     "bspline_8_117", "elliptic_9_99",  "bspline_1_37",   "elliptic_2_1614",
-        "bspline_2_1947", "bspline_5_357",   "bspline_1_777", "bspline_1_2",    "bspline_1_1262", "plate_1_1391",
-        "bspline_1_1272", "filleted_4_1700", "bspline_2_792", "aerofoil_3_201", "aerofoil_3_288", "plate_3_686",
-        "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",  "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
-        "bspline_1_1257", "aerofoil_1_68"}) {
+       {"strip_7_63",     "strip_7_313",     "bspline_8_117",  "elliptic_9_99",  "bspline_1_37",   "elliptic_2_1614",
+        "bspline_2_1947", "bspline_5_357",   "bspline_1_777",  "bspline_1_2",    "bspline_1_1262", "plate_1_1391",
+        "bspline_1_1272", "filleted_4_1700", "bspline_2_792",  "aerofoil_3_201", "aerofoil_3_288", "plate_3_686",
+        "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
+        "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",  "bspline_1_1157", "bspline_1_112",
+        "bspline_1_1977", "elliptic_1_1724"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
@@ -175,6 +189,60 @@ TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
   }
 }
 
+// Faces whose mesh flow found the medial axis folding back (its touches
+// running backwards) or a flow switch of k = -2, or whose axis failed its
+// disc check (fuzz seed 1). On 22 closed B-spline outlines with wavy caps and
+// on bspline_1_1802 a branch's curvature-contact end was snapped to the peak
+// next to the one the branch runs into (both discs empty, both centres
+// about as near the discretised end); on bspline_1_112, _497, _1157 and
+// _1797 the peak lay just past the nearly flat reflex corner at the seam of
+// the closed B-spline, where the search stopped. bspline_1_1977: a point
+// beside a pruned ripple branch repaired onto the ripple's own bisector.
+// elliptic_1_1724: a junction solved with two of its three places slid into
+// one (an ordinary point of the flare's edge). bspline_3_1347 (a junction
+// touching a reflex corner along both its edges) and bspline_5_1012 (an end
+// node far from its end, the shorter way between its feet the wrong side)
+// went wrong with a first fix; bspline_3_982 (two touches of an end node
+// that are one place, beside a reflex corner) with a second. Each axis must
+// pass the medial checks, every edge must run on into its curvature-contact
+// ends (its last step turning by less than a right angle) and the mesh flow
+// must pass its own checks.
+// Takes about 0.3 s.
+TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
+  for (const char* name :
+       {"bspline_1_147",  "bspline_1_212",  "bspline_1_267",   "bspline_1_522",  "bspline_1_702",  "bspline_1_802",
+        "bspline_1_1002", "bspline_1_1012", "bspline_1_1157",  "bspline_1_1167", "bspline_1_1197", "bspline_1_1302",
+        "bspline_1_1347", "bspline_1_1472", "bspline_1_1477",  "bspline_1_1507", "bspline_1_1572", "bspline_1_1622",
+        "bspline_1_1887", "bspline_1_1917", "bspline_1_1927",  "bspline_1_1977", "bspline_1_1802", "bspline_1_112",
+        "bspline_1_497",  "bspline_1_1797", "elliptic_1_1724", "bspline_3_1347", "bspline_5_1012", "bspline_3_982"}) {
+    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    MedialAxis axis;
+    try {
+      axis = compute_medial_axis(face);
+      compute_mesh_flow(face, axis);
+    } catch (const SelfCheckError& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
+    EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << name;
+    for (const MedialEdge& e : axis.edges) {
+      const std::size_t n = e.points.size();
+      if (n < 3) continue;
+      for (const bool at_end : {false, true}) {
+        const int v = at_end ? e.to : e.from;
+        if (v < 0 || axis.vertices[v].kind != MedialVertexKind::CurvatureContact) continue;
+        const Vec2 a = e.points[at_end ? n - 3 : 2].p, b = e.points[at_end ? n - 2 : 1].p;
+        const Vec2 end = e.points[at_end ? n - 1 : 0].p;
+        // Nearer than a thousandth of the radius, the axis does not resolve
+        // a direction (bspline_1_1802 has a point 1.6e-5 from its end).
+        if (distance(b, end) < 1e-3 * axis.vertices[v].r) continue;
+        EXPECT_GT(dot(b - a, end - b), 0.0)
+            << name << ": the edge turns back into its end at (" << end.x << ", " << end.y << ")";
+      }
+    }
+  }
+}
+
 // Faces whose meshes were valid but far coarser than asked: a side facing a
 // much shorter one in a mapped block took the short one's count, since
 // interval assignment charged at most one goal's worth for any coarsening.
@@ -206,22 +274,6 @@ TEST(FuzzFaces, ElementCountFollowsTheTargetSize) {
   }
 }
 
-// A face whose last decomposition attempt (corners typed by their angles)
-// gave a block turned inside out, its outline running clockwise, with exit
-// code 0: it must now pass the decomposition checks or fail loudly.
-TEST(FuzzFaces, NoBlockTurnedInsideOut) {
-  const FaceModel face = face_model_from_brep_string(fuzz_face_text("bspline_1_717"), "bspline_1_717");
-  const MedialAxis axis = compute_medial_axis(face);
-  const MeshFlow flow = compute_mesh_flow(face, axis);
-  try {
-    const Decomposition d = decompose(face, axis, flow, {});
-    EXPECT_TRUE(test::decomposition_problems(face, flow, d).empty());
-    for (const Block& b : d.blocks) EXPECT_GT(b.area, 0.0);
-  } catch (const SelfCheckError& e) {
-    EXPECT_NE(std::string(e.what()).find("bspline_1_717"), std::string::npos) << e.what();
-  }
-}
-
 // The relaxed rings: the pentagon's corner taken as flat cancels its k = +1
 // against the -1 on its corner, so the mesh has no irregular interior node,
 // and says what was relaxed.
@@ -250,12 +302,12 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
   for (const auto& [name, fallback] : std::vector<std::pair<std::string, bool>>{
            {"bspline_1_777", false},   {"bspline_1_2", false},     {"bspline_1_1262", false},
            {"plate_1_1391", false},    {"bspline_1_1272", true},   {"filleted_4_1700", false},
-           {"bspline_2_792", true},    {"filleted_1_915", false},  {"filleted_1_950", false},
+           {"bspline_2_792", false},   {"filleted_1_915", false},  {"filleted_1_950", false},
            {"filleted_1_1820", false}, {"filleted_1_1980", false}, {"filleted_3_275", false},
            {"filleted_1_490", false},  {"filleted_1_910", false},  {"filleted_1_990", false},
            {"filleted_1_1490", false}, {"filleted_1_880", false},  {"filleted_1_1360", false},
            {"bspline_1_1212", false},  {"bspline_1_1442", false},  {"filleted_1_1205", false},
-           {"bspline_3_387", false}}) {
+           {"bspline_3_387", false},   {"bspline_1_717", false},   {"aerofoil_1_116", false}}) {
     const std::string text = fuzz_face_text(name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);
@@ -285,7 +337,10 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
       EXPECT_TRUE(BRepCheck_Analyzer(piece).IsValid()) << name;
       occ_area += area_of(piece);
     }
-    EXPECT_NEAR(occ_area, area_of(occ_face), 1e-8 * face.area) << name;
+    // Splitting B-spline edges moves them within OCC's tolerance: on a face a
+    // fortieth of a unit across (aerofoil_1_116) that term, tolerance x size,
+    // is the larger, as split_face's own check allows.
+    EXPECT_NEAR(occ_area, area_of(occ_face), 1e-8 * face.area + face.tolerance * face.size) << name;
   }
 }
 

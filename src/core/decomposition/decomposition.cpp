@@ -59,7 +59,8 @@ struct Cut {
   MedialPoint point;
   PointFlow behind, ahead;  // the flow just before and after s along the edge
   SplitReason reason = SplitReason::Resolve;
-  std::vector<int> splits;  // indices into the output's splits
+  std::vector<int> splits;     // indices into the output's splits
+  std::vector<double> covers;  // further positions of fixed members whose split is this one
 };
 
 // Where a singularity of the mesh flow sits on the medial axis.
@@ -747,7 +748,10 @@ class Decomposer {
 
   bool cut_at(int e, double s) const {
     for (const Cut& c : cuts_) {
-      if (c.edge == e && std::abs(c.s - s) < 1e-9) return true;
+      if (c.edge != e) continue;
+      if (std::abs(c.s - s) < 1e-9) return true;
+      for (const double covered : c.covers)
+        if (std::abs(covered - s) < 1e-9) return true;
     }
     return false;
   }
@@ -866,11 +870,16 @@ class Decomposer {
   // mapped meshing does with a fillet, a round end or a bump: a k = -1 at
   // the end of a branch into a bump otherwise sits beside the reflex corner
   // of the cut through the branch's k = +1 and has no convex block); and a
-  // k > 0 at a flare onto its corner, which gets k elements more (a slot's
-  // corner in a thin strip, whose k = +1 no merge joins to the k = -1 beside
-  // it, a flare's radius being 0).
+  // flare's k onto its corner, which gets nc + k elements (a slot's corner
+  // in a thin strip, whose k = +1 no merge joins to the k = -1 beside it, a
+  // flare's radius being 0; an obtuse corner's k = -1, one element then).
   static bool contact_vertex(const MedialVertex& v) {
     return v.kind == MedialVertexKind::FiniteContact || v.kind == MedialVertexKind::CurvatureContact;
+  }
+  bool flare_fixable(const MedialVertex& v, int k) const {
+    if (k > 0) return true;
+    const int ci = v.touches.empty() ? -1 : corner_index(v.touches.front());
+    return k < 0 && ci >= 0 && face_.corners[ci].nc + k >= 1;
   }
   bool boundary_fixable(int u) const {
     for (int m : units_[u].members) {
@@ -879,7 +888,7 @@ class Decomposer {
       const MedialVertex& v = axis_.vertices[loc.vertex];
       const bool junction = v.kind == MedialVertexKind::Junction && v.edges.size() >= 2;
       const bool contact = (contact_vertex(v) && flow_.singularities[m].k < 0) ||
-                           (v.kind == MedialVertexKind::Flare && flow_.singularities[m].k > 0);
+                           (v.kind == MedialVertexKind::Flare && flare_fixable(v, flow_.singularities[m].k));
       if (!junction && !contact) return false;
     }
     return true;
@@ -944,9 +953,40 @@ class Decomposer {
       c.behind = flow_.points[loc.edge][i];
       c.ahead = flow_.points[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
-      cuts_.push_back(c);
       ++version_;
+      // Members a hair's breadth apart (a switch beside the junction-like
+      // point where a pruned branch left the edge) would get one split
+      // twice, with a block of no area between: one split takes both, with
+      // the flow from before the first to after the last.
+      if (Cut* same = coinciding_fix(c)) {
+        same->covers.push_back(c.s);
+        if (c.s < same->s) same->behind = c.behind;
+        if (c.s > same->s) same->ahead = c.ahead;
+        continue;
+      }
+      cuts_.push_back(c);
     }
+  }
+
+  // A fix cut on the same edge whose split is the new one's to the sliver
+  // length, with no feature of the edge between the two.
+  Cut* coinciding_fix(const Cut& c) {
+    const double sliver = sliver_length();
+    for (Cut& other : cuts_) {
+      if (other.edge != c.edge || other.reason != SplitReason::Fix) continue;
+      if (distance(other.point.p, c.point.p) > sliver ||
+          distance(other.point.left.point, c.point.left.point) > sliver ||
+          distance(other.point.right.point, c.point.right.point) > sliver)
+        continue;
+      const double lo = std::min(other.s, c.s), hi = std::max(other.s, c.s);
+      const auto between = [&](double s) { return s > lo + 1e-9 && s < hi - 1e-9; };
+      const bool apart =
+          std::any_of(locations_.begin(), locations_.end(),
+                      [&](const Location& l) { return l.edge == c.edge && between(l.s); }) ||
+          std::any_of(cuts_.begin(), cuts_.end(), [&](const Cut& x) { return x.edge == c.edge && between(x.s); });
+      if (!apart) return &other;
+    }
+    return nullptr;
   }
 
   // The split through a singularity at p between points i and i + 1 of

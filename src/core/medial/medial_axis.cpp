@@ -66,6 +66,7 @@ class Builder {
     join_isolated_finite_contacts();
     keep_connected_axis();
     classify_nodes();
+    repair_flipped_junction_pairs();
     trace_chains();
     return std::move(axis_);
   }
@@ -256,9 +257,7 @@ class Builder {
   // A branch from a curvature peak is medial only if the disc at the centre of
   // curvature holds no boundary: else another edge cuts it off first.
   bool curvature_end_is_medial(int node) const {
-    const Vec2 p = node_point(node);
-    const std::optional<MedialVertex> v =
-        curvature_contact(p, graph_.vertices[node_vertex_[node]].r, touches_at(node, p));
+    const std::optional<MedialVertex> v = curvature_contact(node);
     return v && disc_is_empty(v->p, v->r);
   }
 
@@ -485,18 +484,46 @@ class Builder {
   }
 
   // The exact junction: the point equally far from three candidate places
-  // with no candidate nearer, closest to where the Voronoi diagram put it.
+  // with no candidate nearer, touching both places of as many of the node's
+  // own edges as can be (near a point where four places are almost on one
+  // circle, two nodes close together would otherwise both take the junction
+  // nearer to them, and edges would meet a junction that does not touch
+  // their places), then closest to where the Voronoi diagram put it.
   void make_junction(int node, Vec2 p) {
     MedialVertex v;
     v.kind = MedialVertexKind::Junction;
     v.p = p;
     const std::vector<BoundaryPlace> candidates = junction_candidates(node, p);
-    double best = 1e300;
+    const auto own_edges_touched = [&](const Equidistant& exact) {
+      int count = 0;
+      for (int e : nodes_[node].edges) {
+        bool both = true;
+        for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right})
+          both = both && std::abs(distance(place_of(site, exact.p).point, exact.p) - exact.r) <= 1e-9 * size();
+        count += both ? 1 : 0;
+      }
+      return count;
+    };
+    std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       for (std::size_t j = i + 1; j < candidates.size(); ++j) {
         for (std::size_t k = j + 1; k < candidates.size(); ++k) {
           const Equidistant exact = equidistant(index_, p, {candidates[i], candidates[j], candidates[k]});
-          if (!exact.converged || distance(exact.p, p) >= best) continue;
+          if (!exact.converged) continue;
+          // Two of the places slid into one (from a place on a thin face's
+          // far side, the search can run round an end onto the near side):
+          // then any point of the other two's bisector solves the equations,
+          // and the point found is an ordinary point of that edge. A reflex
+          // corner reached along both its edges is left alone: the chords'
+          // diagram splits the corner's normal wedge between the two edges'
+          // ends, and this has long stood for the junction there.
+          const auto& e = exact.places;
+          const auto one = [&](const BoundaryPlace& a, const BoundaryPlace& b) {
+            return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
+          };
+          if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) continue;
+          const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
+          if (!(score < best)) continue;
           std::vector<BoundaryPlace> touches;
           bool empty = true;
           for (const BoundaryPlace& c : candidates) {
@@ -506,7 +533,7 @@ class Builder {
             if (d <= exact.r * (1 + 1e-9)) touches.push_back(at);
           }
           if (!empty) continue;
-          best = distance(exact.p, p);
+          best = score;
           v.p = exact.p;
           v.r = exact.r;
           v.touches = touches;
@@ -519,6 +546,86 @@ class Builder {
     }
     nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
     axis_.vertices.push_back(v);
+  }
+
+  bool at_reflex_corner(const BoundaryPlace& place) const {
+    return std::any_of(face_.corners.begin(), face_.corners.end(), [&](const Corner& c) {
+      return c.loop == place.loop && index_.is_reflex(c.loop, c.vertex) &&
+             distance(c.position, place.point) <= kSamePlace * size();
+    });
+  }
+
+  // Where four places lie almost on one circle the axis has two junctions
+  // joined by a short edge, and the discretised diagram may pair the places
+  // the other way round from the exact junctions (a flip): an edge then meets
+  // the junction that does not touch its two places, and the short edge is
+  // the bisector of the wrong two. Such edges are moved to the junction that
+  // touches both their places, and the short edge becomes the bisector of
+  // the two places both junctions touch.
+  void repair_flipped_junction_pairs() {
+    for (std::size_t a = 0; a < nodes_.size(); ++a) {
+      if (!junction_node(static_cast<int>(a))) continue;
+      for (const int s : std::vector<int>(nodes_[a].edges)) {
+        const auto [x, y] = edge_nodes_.at(s);
+        const int b = x == static_cast<int>(a) ? y : x;
+        if (b > static_cast<int>(a) && junction_node(b)) repair_pair(static_cast<int>(a), b, s);
+      }
+    }
+  }
+
+  bool junction_node(int node) const {
+    return nodes_[node].vertex >= 0 && axis_.vertices[nodes_[node].vertex].kind == MedialVertexKind::Junction;
+  }
+
+  // Whether the junction's disc touches the site's place.
+  bool touches_site(const MedialVertex& v, const Site& site) const {
+    return std::abs(distance(place_of(site, v.p).point, v.p) - v.r) <= 1e-9 * size();
+  }
+  bool touches_edge(const MedialVertex& v, int voronoi_edge) const {
+    return touches_site(v, graph_.edges[voronoi_edge].left) && touches_site(v, graph_.edges[voronoi_edge].right);
+  }
+
+  void repair_pair(int a, int b, int s) {
+    const MedialVertex &va = axis_.vertices[nodes_[a].vertex], &vb = axis_.vertices[nodes_[b].vertex];
+    if (distance(va.p, vb.p) > kPointSpacing * size() || (touches_edge(va, s) && touches_edge(vb, s))) return;
+    std::vector<int> to_b, to_a;
+    for (int f : nodes_[a].edges)
+      if (f != s && !touches_edge(va, f) && touches_edge(vb, f)) to_b.push_back(f);
+    for (int f : nodes_[b].edges)
+      if (f != s && !touches_edge(vb, f) && touches_edge(va, f)) to_a.push_back(f);
+    if (to_a.empty() && to_b.empty()) return;
+    const int degree_a = static_cast<int>(nodes_[a].edges.size() - to_b.size() + to_a.size());
+    const int degree_b = static_cast<int>(nodes_[b].edges.size() - to_a.size() + to_b.size());
+    if (degree_a < 3 || degree_b < 3) return;
+    // The places both junctions touch, from the sites of the edges there.
+    std::vector<Site> shared;
+    std::vector<BoundaryPlace> shared_places;
+    for (const int node : {a, b}) {
+      for (int f : nodes_[node].edges) {
+        if (f == s) continue;
+        for (const Site& site : {graph_.edges[f].left, graph_.edges[f].right}) {
+          if (!touches_site(va, site) || !touches_site(vb, site)) continue;
+          const BoundaryPlace place = place_of(site, va.p);
+          if (std::any_of(shared_places.begin(), shared_places.end(),
+                          [&](const BoundaryPlace& q) { return same_place(q, place, kSamePlace * size()); }))
+            continue;
+          shared.push_back(site);
+          shared_places.push_back(place);
+        }
+      }
+    }
+    if (shared.size() != 2) return;
+    const auto move = [&](int f, int from, int to) {
+      auto& ends = edge_nodes_.at(f);
+      (ends.first == from ? ends.first : ends.second) = to;
+      auto& list = nodes_[from].edges;
+      list.erase(std::remove(list.begin(), list.end(), f), list.end());
+      nodes_[to].edges.push_back(f);
+    };
+    for (int f : to_b) move(f, a, b);
+    for (int f : to_a) move(f, b, a);
+    graph_.edges[s].left = shared[0];
+    graph_.edges[s].right = shared[1];
   }
 
   void make_end(int node, Vec2 p) {
@@ -549,7 +656,7 @@ class Builder {
     fallback.p = p;
     fallback.r = r;
     fallback.touches = touches;
-    nodes_[node].vertex = add_vertex(curvature_contact(p, r, touches).value_or(fallback));
+    nodes_[node].vertex = add_vertex(curvature_contact(node).value_or(fallback));
   }
 
   int add_vertex(const MedialVertex& v) {
@@ -558,9 +665,13 @@ class Builder {
   }
 
   // A place on a loop moved by arc length ds along the loop's order (way +1)
-  // or against it (-1), across tangent joins (a closed curve's seam is one);
-  // false at a corner, where no curvature contact can lie beyond.
-  bool advance(BoundaryPlace& q, int way, double ds) const {
+  // or against it (-1), across tangent joins (a closed curve's seam is one)
+  // and, if past_reflex, reflex corners, past which the boundary a disc
+  // touches goes on (crossed says one was passed); false at any other
+  // corner (at a convex one the axis ends in the corner's flare and no
+  // curvature contact can lie beyond).
+  bool advance(BoundaryPlace& q, int way, double ds, bool past_reflex, bool& crossed) const {
+    crossed = false;
     const BoundaryEdge& edge = index_.edge(q.loop, q.edge);
     const double sense = (edge.t_end >= edge.t_start ? 1.0 : -1.0) * way;
     const double t = q.t + sense * ds / std::max(norm(evaluate(edge.curve, q.t).d1), 1e-300);
@@ -570,69 +681,150 @@ class Builder {
       return true;
     }
     const int count = index_.edge_count(q.loop);
-    if (index_.is_corner(q.loop, way > 0 ? (q.edge + 1) % count : q.edge)) return false;
+    const int vertex = way > 0 ? (q.edge + 1) % count : q.edge;
+    if (index_.is_corner(q.loop, vertex)) {
+      if (!past_reflex || !index_.is_reflex(q.loop, vertex)) return false;
+      crossed = true;
+    }
     const int next = way > 0 ? (q.edge + 1) % count : (q.edge + count - 1) % count;
     const BoundaryEdge& following = index_.edge(q.loop, next);
     q = index_.place(q.loop, next, way > 0 ? following.t_start : following.t_end);
     return true;
   }
 
-  // The end of an axis between two places of one smooth curve: the centre of
-  // curvature at a curvature peak (an ellipse's is at x = +-(a^2 - b^2)/a on
-  // its major axis). The peaks within the end's radius r along the boundary
-  // either way from its foot are candidates (the discretised end lies a few
-  // chords off, and its two feet may already have met or may straddle a
-  // closed curve's seam); the one whose centre is nearest the end point p
-  // among those whose disc is empty is it. Empty if no true local maximum of
-  // curvature lies there.
-  std::optional<MedialVertex> curvature_contact(Vec2 p, double r, const std::vector<BoundaryPlace>& touches) const {
+  // Places along the boundary about ds apart, in order. cut[i] says a reflex
+  // corner lies between places i and i + 1, cut_front and cut_back that a
+  // corner cut the run short: a curvature peak is a peak among its
+  // neighbours on its side of a corner, and may lie at a corner.
+  struct Run {
+    std::vector<BoundaryPlace> places;
+    std::vector<bool> cut;
+    bool cut_front = false, cut_back = false;
+  };
+
+  struct Walk {
+    std::vector<BoundaryPlace> places;  // from nearest the start on, the start left out
+    std::vector<bool> crossed;          // a reflex corner was passed on the way to the place
+    bool stopped = false;               // at a corner
+  };
+
+  Walk walk(const BoundaryPlace& from, int way, double ds, int steps, bool past_reflex) const {
+    Walk w;
+    BoundaryPlace q = from;
+    for (int k = 0; k < steps; ++k) {
+      bool crossed = false;
+      if (!advance(q, way, ds, past_reflex, crossed)) {
+        w.stopped = true;
+        break;
+      }
+      w.places.push_back(q);
+      w.crossed.push_back(crossed);
+    }
+    return w;
+  }
+
+  // The run from the far end of `behind` through `foot` to the far end of
+  // the first `count` places of `ahead`.
+  static Run join(const Walk& behind, const BoundaryPlace& foot, const Walk& ahead, std::size_t count) {
+    Run run;
+    for (std::size_t k = behind.places.size(); k-- > 0;) {
+      run.places.push_back(behind.places[k]);
+      run.cut.push_back(behind.crossed[k]);
+    }
+    run.places.push_back(foot);
+    count = std::min(count, ahead.places.size());
+    for (std::size_t k = 0; k < count; ++k) {
+      run.cut.push_back(ahead.crossed[k]);
+      run.places.push_back(ahead.places[k]);
+    }
+    run.cut_front = behind.stopped;
+    run.cut_back = ahead.stopped && count == ahead.places.size();
+    return run;
+  }
+
+  // The end of the axis at a node of one edge, between two places of one
+  // smooth curve: the centre of curvature at a curvature peak (an ellipse's
+  // is at x = +-(a^2 - b^2)/a on its major axis), or nothing if no true local
+  // maximum of curvature lies near. Every disc of a branch ending there holds
+  // the boundary from its right foot forwards to its left one (travelling
+  // into the end, the face on the boundary's left), the end's touching point
+  // among it: so where the end's two feet are apart, the peaks on that
+  // stretch (past reflex corners) are the candidates, the one nearest the
+  // node among those whose disc is empty. A wavy cap has peaks close
+  // together whose centres are all near the node, and the branch the Voronoi
+  // diagram kept runs into one of them; the nearest either way may be its
+  // neighbour's, and an edge hung on that one folds back. Where the feet
+  // have met, or passed each other (the discretised end lies a few chords
+  // off), or no peak between them has an empty disc, the peaks within the
+  // node's radius r along the boundary either way from each foot are the
+  // candidates: an empty disc first, then the nearest to the node. Each
+  // foot's own run then, up to any corner (beside a reflex corner the feet
+  // may lie on either side of it, and the peak on the other side's), but
+  // past reflex corners where the feet have met in one place (the node's
+  // two touches may also meet there, seen from it): a nearly flat one at
+  // the seam of a closed B-spline may hide the peak just beyond.
+  std::optional<MedialVertex> curvature_contact(int node) const {
+    const Vec2 p = node_point(node);
+    const double r = graph_.vertices[node_vertex_[node]].r;
+    const std::vector<BoundaryPlace> touches = touches_at(node, p);
     if (touches.empty() || r <= 0) return std::nullopt;
-    std::optional<MedialVertex> best;
-    bool best_empty = false;
-    // Each touching place's run: beside a reflex corner the end's feet may
-    // lie on either side of it, and the peak on the other side's.
+    constexpr int kSamples = 64;  // per radius along the boundary
+    const double ds = r / kSamples;
+    std::vector<BoundaryPlace> feet;
     for (BoundaryPlace foot : touches) {
       foot.corner_itself = false;
-      foot = nearest_on_run(index_, foot, p);
-      peaks_near(foot, p, r, best, best_empty);
+      add_distinct(feet, nearest_on_run(index_, foot, p), kSamePlace * size());
     }
+    std::optional<MedialVertex> best;
+    bool best_empty = false;
+    if (feet.size() == 2 && feet[0].loop == feet[1].loop) {
+      const auto [a, b] = edge_nodes_.at(nodes_[node].edges.front());
+      const Vec2 in = p - node_point(a == node ? b : a);
+      const bool first_right = cross(in, feet[0].point - p) < cross(in, feet[1].point - p);
+      const BoundaryPlace& right = feet[first_right ? 0 : 1];
+      const BoundaryPlace& left = feet[first_right ? 1 : 0];
+      // At most a circle's length of the node's disc along the boundary, to
+      // the first place beside the left foot; a few places more either side
+      // on the feet's own runs (the feet are the discretised end's, a chord
+      // off).
+      constexpr int kMargin = kSamples / 8;
+      const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
+      const Walk ahead = walk(right, 1, ds, reach + kMargin, true);
+      for (std::size_t k = 0; k < ahead.places.size() && k < static_cast<std::size_t>(reach); ++k) {
+        if (distance(ahead.places[k].point, left.point) > ds) continue;
+        std::size_t count = k + 1;
+        while (count < ahead.places.size() && count < k + 1 + kMargin && !ahead.crossed[count]) ++count;
+        peaks_on(join(walk(right, -1, ds, kMargin, false), right, ahead, count), p, ds, best, best_empty);
+        break;
+      }
+      if (best_empty) return best;
+      best.reset();
+    }
+    const bool met = feet.size() == 1;
+    for (const BoundaryPlace& foot : feet)
+      peaks_on(join(walk(foot, -1, ds, kSamples, met), foot, walk(foot, 1, ds, kSamples, met), kSamples), p, ds, best,
+               best_empty);
     return best;
   }
 
-  // The curvature peaks within r of the foot along its run, as candidates for
-  // curvature_contact: best is the nearest to p whose disc is empty, else the
-  // nearest.
-  void peaks_near(const BoundaryPlace& foot, Vec2 p, double r, std::optional<MedialVertex>& best,
-                  bool& best_empty) const {
-    // Samples along the run, in order, from r behind the foot to r ahead;
-    // a run cut short by a corner ends at the corner.
-    constexpr int kSamples = 64;
-    const double ds = r / kSamples;
-    std::vector<BoundaryPlace> behind{foot}, ahead{foot};
-    bool corner_behind = false, corner_ahead = false;
-    for (int way : {-1, 1}) {
-      auto& side = way < 0 ? behind : ahead;
-      for (int k = 0; k < kSamples; ++k) {
-        BoundaryPlace q = side.back();
-        if (!advance(q, way, ds)) {
-          (way < 0 ? corner_behind : corner_ahead) = true;
-          break;
-        }
-        side.push_back(q);
-      }
-    }
-    std::vector<BoundaryPlace> run(behind.rbegin(), behind.rend());
-    run.insert(run.end(), ahead.begin() + 1, ahead.end());
-    const auto kappa = [&](const BoundaryPlace& q) { return curvature(index_.edge(q.loop, q.edge), q.t); };
-    for (std::size_t i = 0; i < run.size(); ++i) {
-      // A peak of the run; at a run's end only where a corner cut it short
-      // (the curvature may rise all the way to a reflex corner).
-      if ((i == 0 && !corner_behind) || (i + 1 == run.size() && !corner_ahead)) continue;
-      const double k = kappa(run[i]);
-      if (k <= 0 || (i > 0 && k < kappa(run[i - 1])) || (i + 1 < run.size() && k < kappa(run[i + 1]))) continue;
+  // The curvature peaks of a run, as candidates for curvature_contact: best
+  // is the nearest to p whose disc is empty, else the nearest.
+  void peaks_on(const Run& run, Vec2 p, double ds, std::optional<MedialVertex>& best, bool& best_empty) const {
+    const std::size_t n = run.places.size();
+    std::vector<double> kappa(n);
+    for (std::size_t i = 0; i < n; ++i)
+      kappa[i] = curvature(index_.edge(run.places[i].loop, run.places[i].edge), run.places[i].t);
+    for (std::size_t i = 0; i < n; ++i) {
+      // Neighbours on this place's side of any corner; at a run's end, a
+      // place may be a peak only where a corner cut it short (the curvature
+      // may rise all the way to a corner).
+      const bool before = i > 0 && !run.cut[i - 1], after = i + 1 < n && !run.cut[i];
+      if ((i == 0 && !run.cut_front) || (i + 1 == n && !run.cut_back)) continue;
+      const double k = kappa[i];
+      if (k <= 0 || (before && k < kappa[i - 1]) || (after && k < kappa[i + 1])) continue;
       // Golden-section refinement within a sample step either side, on the
       // sample's edge (a closed curve's seam may lie between the samples).
-      const BoundaryPlace& at_sample = run[i];
+      const BoundaryPlace& at_sample = run.places[i];
       const BoundaryEdge& edge = index_.edge(at_sample.loop, at_sample.edge);
       const double dt = ds / std::max(norm(evaluate(edge.curve, at_sample.t).d1), 1e-300);
       double a = std::max(std::min(edge.t_start, edge.t_end), at_sample.t - dt);
@@ -658,6 +850,8 @@ class Builder {
       v.r = 1.0 / curvature(edge, t);
       v.p = at.point + v.r * perp(edge_tangent(edge, t));
       v.touches = {at};
+      // Every place of a circular arc is a peak, all with one centre: judged once.
+      if (best && distance(v.p, best->p) <= 1e-9 * size() && std::abs(v.r - best->r) <= 1e-9 * size()) continue;
       // A peak whose disc holds boundary is no contact (a ripple beside the
       // true one, when the end stopped short of it): an empty disc wins.
       const bool empty = disc_is_empty(v.p, v.r);
@@ -916,8 +1110,14 @@ double violation(const std::vector<Vec2>& nearest, const MedialAxis& axis) {
 // minimum of the distance (a foot on a bump while the disc reaches into the
 // next one, or both feet on one bump): then the global nearest place is
 // nearer than the radius. Such a point is placed again on the bisector of
-// the global nearest place and one of its feet (whichever gives a point whose
-// disc touches the boundary, nearest to where it was). nearest is updated.
+// the global nearest place and one of its feet. The global place stands in
+// for the foot on its side, the nearer one, so the farther foot is kept
+// first: the point's two touches stay one on each side of its edge. Kept
+// the other way (the foot beside the global place), a point beside a pruned
+// ripple branch becomes the ripple's own bisector point, touching two places
+// on one side, and the edge's touches fold back there. Only where that
+// leaves the disc off the boundary (both feet were on one bump) is the
+// other foot kept instead. nearest is updated.
 void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& boundary, double tolerance, MedialAxis& axis,
                         std::vector<Vec2>& nearest) {
   const double same = kSamePlace * index.face().size;
@@ -932,7 +1132,9 @@ void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& bound
       double worst = error(q, nearest[i]);
       if (worst <= tolerance) continue;
       const BoundaryPlace global = boundary.nearest(q.p);
-      for (const BoundaryPlace& foot : {q.left, q.right}) {
+      const bool left_nearer = distance(q.left.point, global.point) < distance(q.right.point, global.point);
+      for (const BoundaryPlace& foot : {left_nearer ? q.right : q.left, left_nearer ? q.left : q.right}) {
+        if (worst <= tolerance) break;
         if (same_place(foot, global, same)) continue;
         const Bisected b = bisect(index, q.p, global, foot);
         if (!b.converged || same_place(b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
