@@ -319,11 +319,11 @@ class Smoother {
     return total;
   }
 
-  // Where boundary node n may go with a turning bound: its two intervals (to
-  // the slide interval's ends) turn by no more than the bound or than they
-  // do now.
+  // Where boundary node n may go: with a turning bound, its two intervals
+  // (to the slide interval's ends) turn by no more than the bound or than
+  // they do now; without one, only the shortest-chord bound below holds.
   struct TurnBound {
-    const BoundaryEdge* edge = nullptr;  // none: no bound
+    const BoundaryEdge* edge = nullptr;
     int node = -1;
     double behind = 0.0, ahead = 0.0;  // the slide interval
     double behind_limit = 0.0, ahead_limit = 0.0;
@@ -331,10 +331,11 @@ class Smoother {
 
   TurnBound turn_bound(int n, double behind, double ahead) const {
     TurnBound bound;
-    if (!(options_.max_boundary_turn > 0.0)) return bound;
     bound.edge = &edge_of(n);
     bound.node = n;
     bound.behind = behind, bound.ahead = ahead;
+    bound.behind_limit = bound.ahead_limit = std::numeric_limits<double>::infinity();
+    if (!(options_.max_boundary_turn > 0.0)) return bound;  // the shortest-chord bound alone
     const double now = mesh_.places[n].t;
     bound.behind_limit = std::max(options_.max_boundary_turn, turning(*bound.edge, behind, now));
     bound.ahead_limit = std::max(options_.max_boundary_turn, turning(*bound.edge, now, ahead));
@@ -345,13 +346,13 @@ class Smoother {
   // smoothing: quality alone would let a side collapse (the scaled
   // Jacobian does not see a side's length).
   bool keeps_turning(const TurnBound& bound, double t) const {
-    if (!bound.edge) return true;
+    if (!bound.edge) return true;  // an interior node
     const int n = bound.node;
     const Vec2 p = edge_point(*bound.edge, t).p;
     return distance(p, mesh_.nodes[behind_[n]]) >= kShortestChord * first_chord_behind_[n] &&
            distance(p, mesh_.nodes[ahead_[n]]) >= kShortestChord * first_chord_ahead_[n] &&
-           turning(*bound.edge, bound.behind, t) <= bound.behind_limit &&
-           turning(*bound.edge, t, bound.ahead) <= bound.ahead_limit;
+           (std::isinf(bound.behind_limit) || turning(*bound.edge, bound.behind, t) <= bound.behind_limit) &&
+           (std::isinf(bound.ahead_limit) || turning(*bound.edge, t, bound.ahead) <= bound.ahead_limit);
   }
 
   double clamp_to_interval(double t, double behind, double ahead) const {
