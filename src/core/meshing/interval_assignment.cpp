@@ -178,6 +178,8 @@ class Model {
   double least_cost(std::vector<double>& x) const;
 
  private:
+  bool fill_continuous(std::vector<double>& x, bool only_goal_rows_cost) const;
+
   std::vector<double> lower_, upper_, cost_;
   double cost_scale_ = 1.0;
   std::vector<bool> integer_;
@@ -187,10 +189,11 @@ class Model {
 
 // x holds every integer column; fills in the continuous ones (each belongs
 // to one row, coefficient +-1, lower bound 0) at their least cost, row by
-// row. True if that meets every row and only the goal rows cost anything:
-// with every count at its own goal's least deviation, no answer is then
-// cheaper, and the LP is not needed.
-bool Model::complete_at_no_cost(std::vector<double>& x) const {
+// row, cheapest first (each row's costs rise with the distance from its
+// target, so a column of negative cost is worth using only towards it).
+// False if some row cannot be met, or, with only_goal_rows_cost, if a row
+// other than a goal row would cost something.
+bool Model::fill_continuous(std::vector<double>& x, bool only_goal_rows_cost) const {
   std::vector<std::pair<double, int>> free;  // (cost, column)
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     double residual = rows_[r].second;
@@ -206,7 +209,7 @@ bool Model::complete_at_no_cost(std::vector<double>& x) const {
       const double coef = rows_[r].first.at(col);
       x[col] = 0.0;
       if (residual * coef <= 0.0) continue;
-      if (cost > 0.0 && !goal_row_[r]) return false;
+      if (only_goal_rows_cost && cost > 0.0 && !goal_row_[r]) return false;
       x[col] = std::min(upper_[col], residual / coef);
       residual -= coef * x[col];
     }
@@ -215,32 +218,17 @@ bool Model::complete_at_no_cost(std::vector<double>& x) const {
   return true;
 }
 
-// x holds every integer column; fills in the continuous ones at their least
-// cost, row by row as complete_at_no_cost does (cheapest first: each row's
-// costs rise with the distance from its target, so a column of negative cost
-// is worth using only towards it), and returns the objective; infinite if
-// some row cannot be met.
+// True if the continuous columns meet every row with only the goal rows
+// costing anything: with every count at its own goal's least deviation, no
+// answer is then cheaper, and the LP is not needed.
+bool Model::complete_at_no_cost(std::vector<double>& x) const {
+  return fill_continuous(x, true);
+}
+
+// The objective with the continuous columns at their least cost; infinite
+// if some row cannot be met.
 double Model::least_cost(std::vector<double>& x) const {
-  std::vector<std::pair<double, int>> free;  // (cost, column)
-  for (std::size_t r = 0; r < rows_.size(); ++r) {
-    double residual = rows_[r].second;
-    free.clear();
-    for (const auto& [col, coef] : rows_[r].first) {
-      if (integer_[col])
-        residual -= coef * x[col];
-      else
-        free.push_back({cost_[col], col});
-    }
-    std::sort(free.begin(), free.end());
-    for (const auto& [cost, col] : free) {
-      const double coef = rows_[r].first.at(col);
-      x[col] = 0.0;
-      if (residual * coef <= 0.0) continue;
-      x[col] = std::min(upper_[col], residual / coef);
-      residual -= coef * x[col];
-    }
-    if (std::abs(residual) > 1e-9) return kUnbounded;
-  }
+  if (!fill_continuous(x, false)) return kUnbounded;
   double total = 0.0;
   for (std::size_t c = 0; c < x.size(); ++c) total += cost_[c] * x[c];
   return total;
