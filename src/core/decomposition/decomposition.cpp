@@ -1609,23 +1609,25 @@ class Decomposer {
   // range starts at the end before it, or the two would overlap or part.
   void chain_run(Outline& o, const std::vector<std::size_t>& run) const {
     const int loop = o.items[run.front()].a.loop;
+    // Each item's advance and the step to its start from the end before it,
+    // as walked (before any end is moved below).
+    std::vector<double> steps(run.size(), 0.0), advances(run.size(), 0.0);
     double total = 0.0;
     for (std::size_t k = 0; k < run.size(); ++k) {
       const Item& it = o.items[run[k]];
       if (it.full || it.a.loop != loop || it.b.loop != loop) return;
-      total += item_advance(it) + (k > 0 ? signed_step(o.items[run[k - 1]].b, it.a) : 0.0);
+      if (k > 0) steps[k] = signed_step(o.items[run[k - 1]].b, it.a);
+      advances[k] = item_advance(it);
+      total += steps[k] + advances[k];
     }
     const double start = loop_position(o.items[run.front()].a), end = start + std::max(total, 0.0);
     double raw = start, at = start;  // the run so far as walked, and as clamped
     bool moved = false;              // whether `at` has left the walked position
-    BoundaryPlace walked_end = o.items[run.front()].a;
     for (std::size_t k = 0; k < run.size(); ++k) {
       Item& it = o.items[run[k]];
-      const double step = k > 0 ? signed_step(walked_end, it.a) : 0.0;
-      walked_end = it.b;
-      raw += step + item_advance(it);
+      raw += steps[k] + advances[k];
       const double next = std::clamp(raw, at, end);
-      if (moved || step != 0.0) it.a = place_at_position(loop, at);
+      if (moved || steps[k] != 0.0) it.a = place_at_position(loop, at);
       it.advance = next - at;
       at = next;
       moved = next != raw;

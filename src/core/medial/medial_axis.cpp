@@ -495,14 +495,8 @@ class Builder {
     v.p = p;
     const std::vector<BoundaryPlace> candidates = junction_candidates(node, p);
     const auto own_edges_touched = [&](const Equidistant& exact) {
-      int count = 0;
-      for (int e : nodes_[node].edges) {
-        bool both = true;
-        for (const Site& site : {graph_.edges[e].left, graph_.edges[e].right})
-          both = both && std::abs(distance(place_of(site, exact.p).point, exact.p) - exact.r) <= 1e-9 * size();
-        count += both ? 1 : 0;
-      }
-      return count;
+      return static_cast<int>(std::count_if(nodes_[node].edges.begin(), nodes_[node].edges.end(),
+                                            [&](int e) { return touches_edge(exact.p, exact.r, e); }));
     };
     std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
     for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -577,22 +571,24 @@ class Builder {
     return nodes_[node].vertex >= 0 && axis_.vertices[nodes_[node].vertex].kind == MedialVertexKind::Junction;
   }
 
-  // Whether the junction's disc touches the site's place.
-  bool touches_site(const MedialVertex& v, const Site& site) const {
-    return std::abs(distance(place_of(site, v.p).point, v.p) - v.r) <= 1e-9 * size();
+  // Whether the disc at p of radius r touches the site's place; both of the
+  // Voronoi edge's sites.
+  bool touches_site(Vec2 p, double r, const Site& site) const {
+    return std::abs(distance(place_of(site, p).point, p) - r) <= 1e-9 * size();
   }
-  bool touches_edge(const MedialVertex& v, int voronoi_edge) const {
-    return touches_site(v, graph_.edges[voronoi_edge].left) && touches_site(v, graph_.edges[voronoi_edge].right);
+  bool touches_edge(Vec2 p, double r, int voronoi_edge) const {
+    return touches_site(p, r, graph_.edges[voronoi_edge].left) && touches_site(p, r, graph_.edges[voronoi_edge].right);
   }
 
   void repair_pair(int a, int b, int s) {
     const MedialVertex &va = axis_.vertices[nodes_[a].vertex], &vb = axis_.vertices[nodes_[b].vertex];
-    if (distance(va.p, vb.p) > kPointSpacing * size() || (touches_edge(va, s) && touches_edge(vb, s))) return;
+    if (distance(va.p, vb.p) > kPointSpacing * size() || (touches_edge(va.p, va.r, s) && touches_edge(vb.p, vb.r, s)))
+      return;
     std::vector<int> to_b, to_a;
     for (int f : nodes_[a].edges)
-      if (f != s && !touches_edge(va, f) && touches_edge(vb, f)) to_b.push_back(f);
+      if (f != s && !touches_edge(va.p, va.r, f) && touches_edge(vb.p, vb.r, f)) to_b.push_back(f);
     for (int f : nodes_[b].edges)
-      if (f != s && !touches_edge(vb, f) && touches_edge(va, f)) to_a.push_back(f);
+      if (f != s && !touches_edge(vb.p, vb.r, f) && touches_edge(va.p, va.r, f)) to_a.push_back(f);
     if (to_a.empty() && to_b.empty()) return;
     const int degree_a = static_cast<int>(nodes_[a].edges.size() - to_b.size() + to_a.size());
     const int degree_b = static_cast<int>(nodes_[b].edges.size() - to_a.size() + to_b.size());
@@ -604,7 +600,7 @@ class Builder {
       for (int f : nodes_[node].edges) {
         if (f == s) continue;
         for (const Site& site : {graph_.edges[f].left, graph_.edges[f].right}) {
-          if (!touches_site(va, site) || !touches_site(vb, site)) continue;
+          if (!touches_site(va.p, va.r, site) || !touches_site(vb.p, vb.r, site)) continue;
           const BoundaryPlace place = place_of(site, va.p);
           if (std::any_of(shared_places.begin(), shared_places.end(),
                           [&](const BoundaryPlace& q) { return same_place(q, place, kSamePlace * size()); }))
