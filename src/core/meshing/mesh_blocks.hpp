@@ -29,8 +29,10 @@ struct BlockMesh {
 // Meshes every block of the decomposition. When no interval counts satisfy the
 // blocks' templates, polygon blocks' corners that are valence-3 points on a
 // neighbour's side are taken as flat and the assignment retried (a note says
-// so); when smoothing with boundary nodes fixed leaves a folded element, it
-// runs again letting them slide along their curves; an interior node in only
+// so); smoothing slides boundary nodes along their curves within the
+// turning interval assignment allowed, and when that leaves a folded or poor
+// element (scaled Jacobian under 0.3), runs again up to 4 times without the
+// turning bound, keeping the best mesh; an interior node in only
 // two elements (blocks' corners at a split's bend adding up to two) has the
 // two joined into one, with a note. Throws InputError for a
 // size that is not a positive number or an order other than 1 or 2, and

@@ -29,8 +29,8 @@ constexpr double kWorstBand = 0.1;
 // large mesh with a wide band of poor quads stays cheap.
 constexpr std::size_t kWorstQuads = 256;
 constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
-// With a turning bound, a boundary interval keeps at least this fraction of
-// the length it had before smoothing.
+// A boundary interval keeps at least this fraction of the length it had
+// before smoothing, with or without a turning bound.
 constexpr double kShortestChord = 0.25;
 
 // Signed quality of corner i of a quad: the scaled Jacobian, or the
@@ -322,15 +322,15 @@ class Smoother {
   // Where boundary node n may go: with a turning bound, its two intervals
   // (to the slide interval's ends) turn by no more than the bound or than
   // they do now; without one, only the shortest-chord bound below holds.
-  struct TurnBound {
+  struct SlideBound {
     const BoundaryEdge* edge = nullptr;
     int node = -1;
     double behind = 0.0, ahead = 0.0;  // the slide interval
     double behind_limit = 0.0, ahead_limit = 0.0;
   };
 
-  TurnBound turn_bound(int n, double behind, double ahead) const {
-    TurnBound bound;
+  SlideBound slide_bound(int n, double behind, double ahead) const {
+    SlideBound bound;
     bound.edge = &edge_of(n);
     bound.node = n;
     bound.behind = behind, bound.ahead = ahead;
@@ -342,10 +342,11 @@ class Smoother {
     return bound;
   }
 
-  // Nor may an interval shrink below kShortestChord of its length before
-  // smoothing: quality alone would let a side collapse (the scaled
-  // Jacobian does not see a side's length).
-  bool keeps_turning(const TurnBound& bound, double t) const {
+  // Whether boundary node n may go to parameter t: no interval shrinks
+  // below kShortestChord of its length before smoothing (quality alone would
+  // let a side collapse: the scaled Jacobian does not see a side's length),
+  // nor turns past its limit.
+  bool may_slide_to(const SlideBound& bound, double t) const {
     if (!bound.edge) return true;  // an interior node
     const int n = bound.node;
     const Vec2 p = edge_point(*bound.edge, t).p;
@@ -418,7 +419,7 @@ class Smoother {
     double behind, ahead;
     slide_interval(n, behind, ahead);
     if (behind == ahead) return false;
-    const TurnBound bound = turn_bound(n, behind, ahead);
+    const SlideBound bound = slide_bound(n, behind, ahead);
     // The third target spaces the node evenly in parameter between its neighbours.
     const double candidates[] = {nearest_parameter(edge, t, parallelogram, behind, ahead),
                                  nearest_parameter(edge, t, centroid, behind, ahead), 0.5 * (behind + ahead)};
@@ -429,7 +430,7 @@ class Smoother {
         const Vec2 step = p - x;
         if (dot(step, step) < still2) break;
         LocalQuality candidate;
-        if (!improves<true>(star_, p, current, candidate) || !keeps_turning(bound, tc)) continue;
+        if (!improves<true>(star_, p, current, candidate) || !may_slide_to(bound, tc)) continue;
         commit(n, p, tc);
         return true;
       }
@@ -464,11 +465,11 @@ class Smoother {
     const bool on_boundary = mesh_.places[n].loop >= 0;
     const double t0 = on_boundary ? mesh_.places[n].t : 0.0;
     double behind = 0.0, ahead = 0.0;
-    TurnBound bound;
+    SlideBound bound;
     if (on_boundary) {
       slide_interval(n, behind, ahead);
       if (behind == ahead) return false;
-      bound = turn_bound(n, behind, ahead);
+      bound = slide_bound(n, behind, ahead);
     }
     Vec2 best_p = x0;
     double best_t = t0;
@@ -476,7 +477,7 @@ class Smoother {
     gather_star<kScaled>(n, star_);
     const auto consider = [&](Vec2 p, double t) {
       LocalQuality q;
-      if (!improves<kScaled>(star_, p, best, q) || !keeps_turning(bound, t)) return false;
+      if (!improves<kScaled>(star_, p, best, q) || !may_slide_to(bound, t)) return false;
       best = q, best_p = p, best_t = t;
       return true;
     };

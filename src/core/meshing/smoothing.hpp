@@ -30,7 +30,8 @@ struct SmoothingResult {
 // element; face corners and options.fixed never move. Order-1 meshes only (throws
 // std::invalid_argument otherwise, and on nodes or places that do not fit
 // the mesh or the face). Boundary nodes keep their loop and edge, stay
-// strictly between their boundary neighbours and keep places[n].t in step.
+// strictly between their boundary neighbours, keep places[n].t in step, and
+// leave each boundary interval at least a quarter of its first length.
 SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options);
 
 }  // namespace mm
