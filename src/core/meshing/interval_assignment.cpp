@@ -302,6 +302,10 @@ Model::Outcome Model::solve() const {
     plain.setLogLevel(0);
     plain.messageHandler()->setLogLevel(0);
     plain.setMaximumNodes(kPlainNodes);
+    // No strong branching: these trees have a few nodes, and trying
+    // candidate branches on each cost more than the whole search did.
+    plain.setNumberStrong(0);
+    plain.setNumberBeforeTrust(0);
     plain.branchAndBound();
     if (plain.isProvenOptimal() && plain.bestSolution()) {
       outcome.values.assign(plain.bestSolution(), plain.bestSolution() + n_cols);
