@@ -32,6 +32,11 @@ constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 // A boundary interval keeps at least this fraction of the length it had
 // before smoothing, with or without a turning bound.
 constexpr double kShortestChord = 0.25;
+// A side at a moved node keeps at least this fraction of the quad's side
+// opposite it (or its length, if already shorter): the scaled Jacobian is
+// blind to a side shrinking to nothing between two good corners, and a thin
+// strip's node otherwise slides onto its neighbour.
+constexpr double kShortestSide = 0.01;
 
 // Signed quality of corner i of a quad: the scaled Jacobian, or the
 // unnormalised corner area (cross product) when untangling.
@@ -203,10 +208,12 @@ class Smoother {
   }
 
   // The quads around a node, the node's corner first: the corner opposite
-  // it does not move with it, so it is valued once per search.
+  // it does not move with it, so it is valued once per search. The floors
+  // are the least squared lengths of the sides from the node to v[1], v[3].
   struct StarQuad {
     Vec2 v[4];
     double opposite;
+    double floor_next, floor_prev;
   };
 
   template <bool kScaled>
@@ -218,6 +225,11 @@ class Smoother {
       StarQuad& s = star[k - offsets_[n]];
       for (int i = 0; i < 4; ++i) s.v[i] = mesh_.nodes[quad[(at + i) % 4]];
       s.opposite = corner_measure<kScaled>(s.v, 2);
+      const auto floor = [&](Vec2 side, Vec2 opposite_side) {
+        return std::min(dot(side, side), kShortestSide * kShortestSide * dot(opposite_side, opposite_side));
+      };
+      s.floor_next = floor(s.v[1] - s.v[0], s.v[2] - s.v[3]);
+      s.floor_prev = floor(s.v[3] - s.v[0], s.v[2] - s.v[1]);
     }
   }
 
@@ -230,6 +242,8 @@ class Smoother {
     candidate = LocalQuality{std::numeric_limits<double>::infinity(), 0.0};
     for (StarQuad& s : star) {
       s.v[0] = p;
+      const Vec2 next_side = s.v[1] - p, prev_side = s.v[3] - p;
+      if (dot(next_side, next_side) < s.floor_next || dot(prev_side, prev_side) < s.floor_prev) return false;
       const double at = corner_measure<kScaled>(s.v, 0);
       if (at < current.min) return false;
       const double next = corner_measure<kScaled>(s.v, 1);

@@ -31,7 +31,8 @@ struct SmoothingResult {
 // std::invalid_argument otherwise, and on nodes or places that do not fit
 // the mesh or the face). Boundary nodes keep their loop and edge, stay
 // strictly between their boundary neighbours, keep places[n].t in step, and
-// leave each boundary interval at least a quarter of its first length.
+// leave each boundary interval at least a quarter of its first length; no
+// move shortens an element side below a hundredth of the side facing it.
 SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options);
 
 }  // namespace mm
