@@ -86,7 +86,8 @@
 // strip_2_268 (a thin strip's end) and aerofoil_2_226 (a slot): smoothing
 // moved an interior node onto its neighbour, a collapsed side between two
 // corners of good scaled Jacobian (now a side keeps a hundredth of the side
-// facing it).
+// facing it). bspline_2_152 and filleted_2_975: see
+// JunctionsTouchThreePlacesAndEdgesNeverTurnBack.
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -130,7 +131,7 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
         "bspline_1_1272", "filleted_4_1700", "bspline_2_792",  "aerofoil_3_201", "aerofoil_3_288", "plate_3_686",
         "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
         "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",  "bspline_1_1157", "bspline_1_112",
-        "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226"}) {
+        "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226", "bspline_2_152",  "filleted_2_975"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
@@ -242,6 +243,48 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
         if (distance(b, end) < 1e-3 * axis.vertices[v].r) continue;
         EXPECT_GT(dot(b - a, end - b), 0.0)
             << name << ": the edge turns back into its end at (" << end.x << ", " << end.y << ")";
+      }
+    }
+  }
+}
+
+// Fuzz seed 2. bspline_2_152: a junction beside a curvature contact, where
+// from the discretised junction the distance to the side curving nearly
+// round it has no local minimum near the exact foot, so two of its three
+// places slid into one and the junction kept two (its disc 4e-6 off the
+// boundary). filleted_2_975: an edge whose sites' searches slid round a
+// fillet onto the neighbouring edge's side, so that it ran past its
+// junction along that edge and turned back (the mesh flow saw the axis fold
+// back). Each axis must pass the medial checks and the mesh flow its own;
+// every junction touches three distinct places and no edge turns back.
+TEST(FuzzFaces, JunctionsTouchThreePlacesAndEdgesNeverTurnBack) {
+  for (const char* name : {"bspline_2_152", "filleted_2_975"}) {
+    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    MedialAxis axis;
+    try {
+      axis = compute_medial_axis(face);
+      compute_mesh_flow(face, axis);
+    } catch (const SelfCheckError& e) {
+      ADD_FAILURE() << e.what();
+      continue;
+    }
+    EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << name;
+    for (const MedialVertex& v : axis.vertices) {
+      if (v.kind != MedialVertexKind::Junction) continue;
+      int distinct = 0;
+      for (std::size_t i = 0; i < v.touches.size(); ++i) {
+        bool seen = false;
+        for (std::size_t j = 0; j < i; ++j)
+          seen = seen || distance(v.touches[i].point, v.touches[j].point) < 1e-6 * face.size;
+        distinct += seen ? 0 : 1;
+      }
+      EXPECT_GE(distinct, 3) << name << ": junction at (" << v.p.x << ", " << v.p.y << ")";
+    }
+    for (const MedialEdge& e : axis.edges) {
+      for (std::size_t k = 1; k + 1 < e.points.size(); ++k) {
+        const Vec2 in = e.points[k].p - e.points[k - 1].p, out = e.points[k + 1].p - e.points[k].p;
+        EXPECT_GT(dot(in, out), -0.9 * norm(in) * norm(out))
+            << name << ": the edge turns back at (" << e.points[k].p.x << ", " << e.points[k].p.y << ")";
       }
     }
   }

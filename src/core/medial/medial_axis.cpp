@@ -460,7 +460,19 @@ class Builder {
   // pairs of Voronoi vertices that may pair the places up wrongly).
   std::vector<BoundaryPlace> junction_candidates(int node, Vec2 p) const {
     std::vector<BoundaryPlace> places;
-    // Voronoi vertices within reach over any interior Voronoi edge, kept or not.
+    for (const Site& site : junction_sites(node, p)) add_distinct(places, place_of(site, p), kSamePlace * size());
+    // The sites of the node's own edges (a branch joined to a finite contact
+    // brings sites no Voronoi vertex here has).
+    for (int e : nodes_[node].edges) {
+      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
+      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
+    }
+    return places;
+  }
+
+  // The sites of the Voronoi vertices within reach of the node over any
+  // interior Voronoi edge, kept or not.
+  std::vector<Site> junction_sites(int node, Vec2 p) const {
     std::vector<int> nearby{node_vertex_[node]};
     for (std::size_t k = 0; k < nearby.size() && nearby.size() < 64; ++k) {
       for (int e : voronoi_neighbours_[nearby[k]]) {
@@ -471,16 +483,15 @@ class Builder {
           nearby.push_back(other);
       }
     }
+    std::vector<Site> sites;
     for (int v : nearby) {
-      for (const Site& site : graph_.vertices[v].sites) add_distinct(places, place_of(site, p), kSamePlace * size());
+      for (const Site& site : graph_.vertices[v].sites) {
+        if (std::none_of(sites.begin(), sites.end(),
+                         [&](const Site& s) { return s.segment == site.segment && s.part == site.part; }))
+          sites.push_back(site);
+      }
     }
-    // The sites of the node's own edges (a branch joined to a finite contact
-    // brings sites no Voronoi vertex here has).
-    for (int e : nodes_[node].edges) {
-      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
-      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
-    }
-    return places;
+    return sites;
   }
 
   // The exact junction: the point equally far from three candidate places
@@ -499,38 +510,52 @@ class Builder {
                                             [&](int e) { return touches_edge(exact.p, exact.r, e); }));
     };
     std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
+    const auto consider = [&](const Equidistant& exact) {
+      if (!exact.converged) return;
+      // Two of the places slid into one (from a place on a thin face's
+      // far side, the search can run round an end onto the near side):
+      // then any point of the other two's bisector solves the equations,
+      // and the point found is an ordinary point of that edge. A reflex
+      // corner reached along both its edges is left alone: the chords'
+      // diagram splits the corner's normal wedge between the two edges'
+      // ends, and this has long stood for the junction there.
+      const auto& e = exact.places;
+      const auto one = [&](const BoundaryPlace& a, const BoundaryPlace& b) {
+        return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
+      };
+      if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) return;
+      const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
+      if (!(score < best)) return;
+      std::vector<BoundaryPlace> touches;
+      for (const BoundaryPlace& c : candidates) {
+        const BoundaryPlace at = nearest_on_run(index_, c, exact.p);
+        const double d = distance(at.point, exact.p);
+        if (d < exact.r * (1 - 1e-9)) return;  // boundary inside the disc
+        if (d <= exact.r * (1 + 1e-9)) add_distinct(touches, at, kSamePlace * size());
+      }
+      for (const BoundaryPlace& at : exact.places) add_distinct(touches, at, kSamePlace * size());
+      best = score;
+      v.p = exact.p;
+      v.r = exact.r;
+      v.touches = touches;
+    };
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       for (std::size_t j = i + 1; j < candidates.size(); ++j) {
-        for (std::size_t k = j + 1; k < candidates.size(); ++k) {
-          const Equidistant exact = equidistant(index_, p, {candidates[i], candidates[j], candidates[k]});
-          if (!exact.converged) continue;
-          // Two of the places slid into one (from a place on a thin face's
-          // far side, the search can run round an end onto the near side):
-          // then any point of the other two's bisector solves the equations,
-          // and the point found is an ordinary point of that edge. A reflex
-          // corner reached along both its edges is left alone: the chords'
-          // diagram splits the corner's normal wedge between the two edges'
-          // ends, and this has long stood for the junction there.
-          const auto& e = exact.places;
-          const auto one = [&](const BoundaryPlace& a, const BoundaryPlace& b) {
-            return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
-          };
-          if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) continue;
-          const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
-          if (!(score < best)) continue;
-          std::vector<BoundaryPlace> touches;
-          bool empty = true;
-          for (const BoundaryPlace& c : candidates) {
-            const BoundaryPlace at = nearest_on_run(index_, c, exact.p);
-            const double d = distance(at.point, exact.p);
-            empty = empty && d >= exact.r * (1 - 1e-9);
-            if (d <= exact.r * (1 + 1e-9)) touches.push_back(at);
-          }
-          if (!empty) continue;
-          best = score;
-          v.p = exact.p;
-          v.r = exact.r;
-          v.touches = touches;
+        for (std::size_t k = j + 1; k < candidates.size(); ++k)
+          consider(equidistant(index_, p, {candidates[i], candidates[j], candidates[k]}));
+      }
+    }
+    if (v.touches.empty()) {
+      // Near a curvature contact the distance from the discretised junction
+      // to a run curving nearly round it may have no local minimum where the
+      // exact junction's foot is, and the searches slide past it (two sites'
+      // places become one): search again with each foot held near its chord.
+      const auto [starts, windows] = chord_windows(node, p);
+      for (std::size_t i = 0; i < starts.size(); ++i) {
+        for (std::size_t j = i + 1; j < starts.size(); ++j) {
+          for (std::size_t k = j + 1; k < starts.size(); ++k)
+            consider(
+                equidistant_within(index_, p, {starts[i], starts[j], starts[k]}, {windows[i], windows[j], windows[k]}));
         }
       }
     }
@@ -540,6 +565,30 @@ class Builder {
     }
     nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
     axis_.vertices.push_back(v);
+  }
+
+  // The segment sites around a junction node, each as the place of its chord
+  // nearest to p and a parameter window of its edge: the chord's range and
+  // twice its length on either side.
+  std::pair<std::vector<BoundaryPlace>, std::vector<std::array<double, 2>>> chord_windows(int node, Vec2 p) const {
+    std::vector<Site> sites = junction_sites(node, p);
+    for (int e : nodes_[node].edges) sites.insert(sites.end(), {graph_.edges[e].left, graph_.edges[e].right});
+    std::vector<BoundaryPlace> starts;
+    std::vector<std::array<double, 2>> windows;
+    std::vector<int> seen;
+    for (const Site& site : sites) {
+      if (site.part != Site::kSegment || std::find(seen.begin(), seen.end(), site.segment) != seen.end()) continue;
+      seen.push_back(site.segment);
+      const BoundarySegment& s = graph_.segments[site.segment];
+      const BoundaryEdge& edge = index_.edge(s.loop, s.edge);
+      const Vec2 d = s.p1 - s.p0;
+      const double t = s.t0 + std::clamp(dot(p - s.p0, d) / dot(d, d), 0.0, 1.0) * (s.t1 - s.t0);
+      const double reach = 2 * std::abs(s.t1 - s.t0);
+      starts.push_back(index_.place(s.loop, s.edge, t));
+      windows.push_back({std::max(std::min(s.t0, s.t1) - reach, std::min(edge.t_start, edge.t_end)),
+                         std::min(std::max(s.t0, s.t1) + reach, std::max(edge.t_start, edge.t_end))});
+    }
+    return {starts, windows};
   }
 
   bool at_reflex_corner(const BoundaryPlace& place) const {
@@ -937,6 +986,8 @@ class Builder {
     if (edge.from < 0) edge.to = -1;  // a closed loop with no vertex
     trim_past_junction(edge, edge.from, false);
     trim_past_junction(edge, edge.to, true);
+    drop_overshoot(edge, edge.from, false);
+    drop_overshoot(edge, edge.to, true);
     touch_from_neighbour(edge, edge.from, false);
     touch_from_neighbour(edge, edge.to, true);
     orient_touches(edge);
@@ -973,6 +1024,37 @@ class Builder {
       }
       if (!beyond) break;
       pts.erase(at_end ? pts.end() - 2 : pts.begin() + 1);
+    }
+  }
+
+  // Near a junction where the nearest-point searches of an edge's sites can
+  // slide round a fillet onto the neighbouring edge's side, the edge's first
+  // points may lie on that neighbour: the edge runs past its vertex along
+  // it, turns right back and passes the vertex again. Those points belong to
+  // the neighbour (their touches are its two sides), and a medial edge never
+  // turns back, so they are dropped: the edge leaves its vertex from the
+  // nearest point to it after the turn. Only a turn within the junction's
+  // radius of it is such an overshoot.
+  void drop_overshoot(MedialEdge& edge, int vertex, bool at_end) const {
+    if (vertex < 0 || axis_.vertices[vertex].kind != MedialVertexKind::Junction) return;
+    const double reach = axis_.vertices[vertex].r;
+    auto& pts = edge.points;
+    const int n = static_cast<int>(pts.size());
+    const auto index = [&](int k) { return at_end ? n - 1 - k : k; };
+    const auto at = [&](int k) { return pts[index(k)].p; };
+    for (int k = 1; k + 1 < n / 2 && distance(at(k), at(0)) <= reach; ++k) {
+      const Vec2 in = at(k) - at(k - 1), out = at(k + 1) - at(k);
+      if (!(dot(in, out) < -0.9 * norm(in) * norm(out))) continue;
+      int nearest = k + 1;
+      for (int j = k + 2; j <= n / 2; ++j) {
+        if (distance(at(j), at(0)) < distance(at(nearest), at(0))) nearest = j;
+      }
+      if (at_end) {
+        pts.erase(pts.begin() + index(nearest - 1), pts.begin() + index(0));
+      } else {
+        pts.erase(pts.begin() + 1, pts.begin() + nearest);
+      }
+      return;
     }
   }
 

@@ -24,8 +24,7 @@ double hi(const BoundaryEdge& e) {
 // longer than a quarter of the distance to m along the curve, so no dip of
 // the boundary is stepped over), then Newton steps within that bracket,
 // bisecting whenever one leaves it.
-double bracketed_nearest(const BoundaryEdge& edge, double t, Vec2 m) {
-  const double a = lo(edge), b = hi(edge);
+double bracketed_nearest(const BoundaryEdge& edge, double a, double b, double t, Vec2 m) {
   const auto g_of = [&](double u, double* slope) {
     const CurvePoint c = evaluate(edge.curve, u);
     if (slope) *slope = dot(c.d1, c.d1) + dot(c.p - m, c.d2);
@@ -69,10 +68,10 @@ double bracketed_nearest(const BoundaryEdge& edge, double t, Vec2 m) {
   return t;
 }
 
-// Nearest parameter of a single edge to m, from the guess t; ends are the
-// curve's points at lo(edge) and hi(edge).
-double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& ends, double t, Vec2 m) {
-  const double a = lo(edge), b = hi(edge);
+// Nearest parameter to m of a single edge's part [a, b], from the guess t;
+// ends are the curve's points at a and b.
+double nearest_parameter(const BoundaryEdge& edge, double a, double b, const std::array<Vec2, 2>& ends, double t,
+                         Vec2 m) {
   if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
     return std::clamp(dot(m - line->origin, line->direction), a, b);
   }
@@ -117,7 +116,7 @@ double nearest_parameter(const BoundaryEdge& edge, const std::array<Vec2, 2>& en
     t = next;
   }
   if (!settled) {
-    t = bracketed_nearest(edge, t, m);
+    t = bracketed_nearest(edge, a, b, t, m);
     c = evaluate(edge.curve, t);
   }
   // Newton may settle on an end where the other end is nearer.
@@ -190,7 +189,7 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
   const int count = index.edge_count(start.loop);
   for (int step = 0; step <= count; ++step) {
     const BoundaryEdge& edge = index.edge(start.loop, e);
-    t = nearest_parameter(edge, index.curve_ends(start.loop, e), t, m);
+    t = nearest_parameter(edge, lo(edge), hi(edge), index.curve_ends(start.loop, e), t, m);
     BoundaryPlace here = index.place(start.loop, e, t);
     const bool at_start = std::abs(t - edge.t_start) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
     const bool at_end = std::abs(t - edge.t_end) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
@@ -198,7 +197,7 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
     // At a tangent join: carry on along the neighbouring edge unless it leads away.
     const int next = at_end ? (e + 1) % count : (e + count - 1) % count;
     const BoundaryEdge& neighbour = index.edge(start.loop, next);
-    const double nt = nearest_parameter(neighbour, index.curve_ends(start.loop, next),
+    const double nt = nearest_parameter(neighbour, lo(neighbour), hi(neighbour), index.curve_ends(start.loop, next),
                                         at_end ? neighbour.t_start : neighbour.t_end, m);
     const BoundaryPlace there = index.place(start.loop, next, nt);
     if (distance(there.point, m) >= distance(here.point, m) * (1 - 1e-14)) return here;
@@ -256,12 +255,16 @@ Bisected bisect(const BoundaryIndex& index, Vec2 m, BoundaryPlace a, BoundaryPla
   return result;
 }
 
-Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& start) {
+namespace {
+
+// Newton's method on the centre m, each place moved by foot(i, place, m) to
+// its nearest point to m before each step.
+template <class Foot>
+Equidistant solve_equidistant(const BoundaryIndex& index, Vec2 m, std::vector<BoundaryPlace> places, Foot foot) {
   const double tolerance = distance_tolerance(index, m);
-  std::vector<BoundaryPlace> places = start;
   Equidistant result;
   for (int i = 0; i < 60; ++i) {
-    for (auto& p : places) p = nearest_on_run(index, p, m);
+    for (std::size_t k = 0; k < places.size(); ++k) places[k] = foot(k, places[k], m);
     const double d0 = distance(m, places[0].point), d1 = distance(m, places[1].point),
                  d2 = distance(m, places[2].point);
     result = {m, (d0 + d1 + d2) / 3, places, false};
@@ -278,6 +281,30 @@ Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<Bo
     // Solve [r1; r2] step = [f1; f2].
     const Vec2 step{(f1 * r2.y - f2 * r1.y) / det, (r1.x * f2 - r2.x * f1) / det};
     m = m - step;
+  }
+  return result;
+}
+
+}  // namespace
+
+Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& places) {
+  return solve_equidistant(index, m, places,
+                           [&](std::size_t, const BoundaryPlace& p, Vec2 at) { return nearest_on_run(index, p, at); });
+}
+
+Equidistant equidistant_within(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& places,
+                               const std::vector<std::array<double, 2>>& windows) {
+  Equidistant result = solve_equidistant(index, m, places, [&](std::size_t k, const BoundaryPlace& p, Vec2 at) {
+    const BoundaryEdge& edge = index.edge(p.loop, p.edge);
+    const auto [a, b] = windows[k];
+    const std::array<Vec2, 2> ends{evaluate_point(edge.curve, a), evaluate_point(edge.curve, b)};
+    return index.place(p.loop, p.edge, nearest_parameter(edge, a, b, ends, p.t, at));
+  });
+  // A foot held at a window's end is no nearest point of the boundary.
+  for (std::size_t k = 0; k < result.places.size() && result.converged; ++k) {
+    const double span = windows[k][1] - windows[k][0];
+    const double t = result.places[k].t;
+    result.converged = t > windows[k][0] + 1e-9 * span && t < windows[k][1] - 1e-9 * span;
   }
   return result;
 }

@@ -75,6 +75,15 @@ struct Equidistant {
 // The point near m equally far from the runs through three places.
 Equidistant equidistant(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& places);
 
+// The same with each place's foot kept on its own edge within the parameter
+// window windows[k] (lower, upper): from a point a little off the answer the
+// nearest place on a run that curves nearly round it may lie far away (the
+// distance has no local minimum near the answer's foot there), and the
+// plain search slides to it. Converged only where every foot settles inside
+// its window, a true local nearest point.
+Equidistant equidistant_within(const BoundaryIndex& index, Vec2 m, const std::vector<BoundaryPlace>& places,
+                               const std::vector<std::array<double, 2>>& windows);
+
 // Curvature at parameter t of an edge, positive where the boundary bends
 // round the material (its centre of curvature is inside).
 double curvature(const BoundaryEdge& edge, double t);
