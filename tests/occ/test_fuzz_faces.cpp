@@ -86,7 +86,7 @@
 // strip_2_268 (a thin strip's end) and aerofoil_2_226 (a slot): smoothing
 // moved an interior node onto its neighbour, a collapsed side between two
 // corners of good scaled Jacobian (now a side keeps a hundredth of the side
-// facing it). bspline_2_152 and filleted_2_975: see
+// facing it). bspline_2_152, filleted_2_975 and bspline_2_1477: see
 // JunctionsTouchThreePlacesAndEdgesNeverTurnBack.
 #include <gtest/gtest.h>
 
@@ -255,10 +255,14 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
 // boundary). filleted_2_975: an edge whose sites' searches slid round a
 // fillet onto the neighbouring edge's side, so that it ran past its
 // junction along that edge and turned back (the mesh flow saw the axis fold
-// back). Each axis must pass the medial checks and the mesh flow its own;
+// back). bspline_2_1477: a branch whose curvature-contact end is on the
+// peak it runs into kept two points of a pruned ripple beyond it, 25 from
+// the end on a radius of 2 700, the second with its sides swapped (the mesh
+// flow saw the axis fold back). Each axis must pass the medial checks and
+// the mesh flow its own;
 // every junction touches three distinct places and no edge turns back.
 TEST(FuzzFaces, JunctionsTouchThreePlacesAndEdgesNeverTurnBack) {
-  for (const char* name : {"bspline_2_152", "filleted_2_975"}) {
+  for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     MedialAxis axis;
     try {

@@ -1034,11 +1034,19 @@ class Builder {
   // the neighbour (their touches are its two sides), and a medial edge never
   // turns back, so they are dropped: the edge leaves its vertex from the
   // nearest point to it after the turn. Only a turn within the junction's
-  // radius of it is such an overshoot.
+  // radius of it is such an overshoot. A branch whose curvature-contact end
+  // was put on the peak it runs into may likewise keep a point or two of
+  // the pruned ripple beyond it, near its end (within a tenth of its radius).
   void drop_overshoot(MedialEdge& edge, int vertex, bool at_end) const {
-    if (vertex < 0 || axis_.vertices[vertex].kind != MedialVertexKind::Junction) return;
-    const double reach = axis_.vertices[vertex].r;
-    auto& pts = edge.points;
+    if (vertex < 0) return;
+    const MedialVertex& v = axis_.vertices[vertex];
+    const double reach = v.kind == MedialVertexKind::Junction           ? v.r
+                         : v.kind == MedialVertexKind::CurvatureContact ? 0.1 * v.r
+                                                                        : 0.0;
+    while (drop_one_overshoot(edge.points, at_end, reach)) continue;
+  }
+
+  static bool drop_one_overshoot(std::vector<MedialPoint>& pts, bool at_end, double reach) {
     const int n = static_cast<int>(pts.size());
     const auto index = [&](int k) { return at_end ? n - 1 - k : k; };
     const auto at = [&](int k) { return pts[index(k)].p; };
@@ -1054,8 +1062,9 @@ class Builder {
       } else {
         pts.erase(pts.begin() + 1, pts.begin() + nearest);
       }
-      return;
+      return true;
     }
+    return false;
   }
 
   // At an arc's centre every point of the arc is equally near, so a finite
