@@ -1,6 +1,6 @@
 // medialmesh_fuzz: random faces through every stage that exists.
 //
-//   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...]
+//   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...] [--from I]
 //
 // Builds N random OCC faces of seven families (filleted polygons with holes,
 // plates with notches and slots, closed B-spline outlines, thin strips with
@@ -20,7 +20,11 @@
 // line in DIR/fuzz.log, and exits with 1 if any face crashed, hung, broke an
 // invariant or hit an internal error. --families runs only the faces of
 // those families among the N (each the face a full run makes), to compare
-// one stage's families before and after a change.
+// one stage's families before and after a change. --from I skips the
+// faces before the I-th (counted from 0 over all families): face
+// <family>_<seed>_<n> is the I-th for I = 7 (n div 5) + n mod 5 in the first
+// five families and I = 7 n + 5 (aerofoils) or 7 n + 6 (cascades), so
+// --from I --count I+1 remakes that one face.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -484,6 +488,7 @@ struct Options {
   std::string out = "fuzz_out";
   unsigned time_limit = 60;
   std::vector<std::string> families;  // all if empty
+  int from = 0;
 };
 
 Options parse(int argc, char** argv) {
@@ -498,6 +503,8 @@ Options parse(int argc, char** argv) {
       o.count = std::stoi(v);
     } else if (a == "--out") {
       o.out = v;
+    } else if (a == "--from") {
+      o.from = std::stoi(v);
     } else if (a == "--time-limit") {
       o.time_limit = static_cast<unsigned>(std::stoul(v));
     } else if (a == "--families") {
@@ -522,7 +529,8 @@ int main(int argc, char** argv) {
     o = parse(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "medialmesh_fuzz: " << e.what()
-              << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...]\n";
+              << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...] "
+                 "[--from I]\n";
     return 2;
   }
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -531,7 +539,7 @@ int main(int argc, char** argv) {
   std::array<int, kOutcomes> counts{};
   std::map<std::string, std::array<int, kOutcomes>> by_family;
   std::map<std::string, int> by_stage;  // faces not ok, by the stage they stopped in
-  for (int i = 0; i < o.count; ++i) {
+  for (int i = o.from; i < o.count; ++i) {
     const Numbered numbered = number_of(o.seed, i);
     const std::string family = kFamilies[numbered.family].first;
     if (!o.families.empty() && std::find(o.families.begin(), o.families.end(), family) == o.families.end()) continue;
