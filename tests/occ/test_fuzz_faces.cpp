@@ -87,7 +87,7 @@
 // moved an interior node onto its neighbour, a collapsed side between two
 // corners of good scaled Jacobian (now a side keeps a hundredth of the side
 // facing it). bspline_2_152, filleted_2_975 and bspline_2_1477: see
-// JunctionsTouchThreePlacesAndEdgesNeverTurnBack. cascade_2_381 and
+// JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBack. cascade_2_381 and
 // cascade_2_387: passages whose first placement folds widely round the
 // blade's round nose; untangling with boundary nodes free slid two nodes
 // off the nose, so one chord cut it off (elements outside the face, none
@@ -137,7 +137,7 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
         "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
         "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",  "bspline_1_1157", "bspline_1_112",
         "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226", "bspline_2_152",  "filleted_2_975",
-        "bspline_2_1477", "cascade_2_381",   "cascade_2_387"}) {
+        "bspline_2_1477", "cascade_2_381",   "cascade_2_387",  "bspline_3_422"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
@@ -264,11 +264,15 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
 // back). bspline_2_1477: a branch whose curvature-contact end is on the
 // peak it runs into kept two points of a pruned ripple beyond it, 25 from
 // the end on a radius of 2 700, the second with its sides swapped (the mesh
-// flow saw the axis fold back). Each axis must pass the medial checks and
+// flow saw the axis fold back). bspline_3_422: a blob whose seam is a
+// convex corner of 175.5 degrees; the chords' diagram lost the last stretch
+// of the corner's flare, and the branch, ending at no curvature peak, was
+// pruned with the big lobe it crossed (the mesh flow found k = -2). Each
+// axis must pass the medial checks and
 // the mesh flow its own;
 // every junction touches three distinct places and no edge turns back.
-TEST(FuzzFaces, JunctionsTouchThreePlacesAndEdgesNeverTurnBack) {
-  for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477"}) {
+TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBack) {
+  for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     MedialAxis axis;
     try {
@@ -289,6 +293,15 @@ TEST(FuzzFaces, JunctionsTouchThreePlacesAndEdgesNeverTurnBack) {
         distinct += seen ? 0 : 1;
       }
       EXPECT_GE(distinct, 3) << name << ": junction at (" << v.p.x << ", " << v.p.y << ")";
+    }
+    for (const Corner& c : face.corners) {
+      if (c.angle >= kPi) continue;
+      EXPECT_TRUE(std::any_of(axis.vertices.begin(), axis.vertices.end(),
+                              [&](const MedialVertex& v) {
+                                return v.kind == MedialVertexKind::Flare &&
+                                       distance(v.p, c.position) <= 1e-9 * face.size;
+                              }))
+          << name << ": no flare at the convex corner (" << c.position.x << ", " << c.position.y << ")";
     }
     for (const MedialEdge& e : axis.edges) {
       for (std::size_t k = 1; k + 1 < e.points.size(); ++k) {

@@ -31,6 +31,9 @@ constexpr double kSamePlace = 1e-6;
 // A branch ending inside the face whose medial angle never reaches this is
 // the trace of a curvature ripple: flow type 2 all along, no critical point.
 constexpr double kRippleAngle = kPi / 4;
+// A convex corner at least this wide is nearly flat: the chords' diagram may
+// lose the end of its flare (see cut_short_flare).
+constexpr double kNearlyFlat = 5 * kPi / 6;
 // Medial polylines get a point at least every this fraction of the face size.
 constexpr double kPointSpacing = 1e-2;
 
@@ -261,6 +264,31 @@ class Builder {
     return v && disc_is_empty(v->p, v->r);
   }
 
+  // A branch into a nearly flat convex corner (its flare) whose last
+  // Voronoi edges, beside the corner, were dropped with the chords'
+  // artefacts: its end lies where the flare's bisector is at the end's
+  // radius from both sides, r / sin(angle / 2) from the corner along the
+  // corner's inward bisector, and its sites' places lie on the corner's two
+  // edges within a quarter of the radius of it. The corner's index, or -1.
+  int cut_short_flare(int node) const {
+    const Vec2 p = node_point(node);
+    const double r = graph_.vertices[node_vertex_[node]].r;
+    const VoronoiEdge& e = graph_.edges[nodes_[node].edges.front()];
+    const BoundaryPlace left = place_of(e.left, p), right = place_of(e.right, p);
+    for (std::size_t i = 0; i < face_.corners.size(); ++i) {
+      const Corner& c = face_.corners[i];
+      if (c.angle >= kPi || c.angle < kNearlyFlat) continue;
+      if (distance(left.point, c.position) > 0.25 * r || distance(right.point, c.position) > 0.25 * r) continue;
+      const int count = index_.edge_count(c.loop);
+      const BoundaryEdge& in = index_.edge(c.loop, (c.vertex + count - 1) % count);
+      const BoundaryEdge& out = index_.edge(c.loop, c.vertex);
+      const Vec2 inward = normalized(edge_tangent(out, out.t_start) - edge_tangent(in, in.t_end));
+      const double along = r / std::sin(0.5 * c.angle);
+      if (distance(p, c.position + along * inward) <= 0.05 * along) return static_cast<int>(i);
+    }
+    return -1;
+  }
+
   // Removes branches from an end inside the face (not a corner, not a finite
   // contact) to the next junction whose medial angle stays below kRippleAngle
   // or whose end is no medial point, until none is left.
@@ -285,6 +313,17 @@ class Builder {
         }
         if (nodes_[node].edges.size() == 1) continue;
         if (largest >= kRippleAngle && curvature_end_is_medial(static_cast<int>(n))) continue;
+        // A cut-short flare keeps its branch if the branch is more than a
+        // stub beside a junction (there the junction touches the corner).
+        double length = 0.0;
+        for (int f : branch)
+          length += distance(node_point(edge_nodes_.at(f).first), node_point(edge_nodes_.at(f).second));
+        if (largest >= kRippleAngle && length > 0.25 * graph_.vertices[node_vertex_[n]].r) {
+          if (const int corner = cut_short_flare(static_cast<int>(n)); corner >= 0) {
+            flare_of_node_[static_cast<int>(n)] = corner;
+            continue;
+          }
+        }
         for (int f : branch) {
           const auto [a, b] = edge_nodes_.at(f);
           for (int end : {a, b}) {
@@ -675,19 +714,22 @@ class Builder {
 
   void make_end(int node, Vec2 p) {
     const double r = graph_.vertices[node_vertex_[node]].r;
-    // Flare: the axis runs into a convex corner.
+    // Flare: the axis runs into a convex corner (or ran into it before its
+    // last stretch was lost: cut_short_flare).
+    const auto flare = [&](const Corner& c) {
+      MedialVertex v;
+      v.kind = MedialVertexKind::Flare;
+      v.p = c.position;
+      v.touches.push_back(index_.place(c.loop, c.vertex, face_.loops[c.loop].edges[c.vertex].t_start));
+      nodes_[node].vertex = add_vertex(v);
+    };
     if (r <= 1e-6 * size()) {
       for (const Corner& c : face_.corners) {
-        if (distance(c.position, p) <= 1e-6 * size()) {
-          MedialVertex v;
-          v.kind = MedialVertexKind::Flare;
-          v.p = c.position;
-          v.touches.push_back(index_.place(c.loop, c.vertex, face_.loops[c.loop].edges[c.vertex].t_start));
-          nodes_[node].vertex = add_vertex(v);
-          return;
-        }
+        if (distance(c.position, p) <= 1e-6 * size()) return flare(c);
       }
     }
+    if (const auto cut_short = flare_of_node_.find(node); cut_short != flare_of_node_.end())
+      return flare(face_.corners[cut_short->second]);
     // The round end of a slot: joins the finite-contact vertex of its arc.
     const int finite_contact = finite_contact_for(node);
     if (finite_contact >= 0) {
@@ -1106,6 +1148,7 @@ class Builder {
   std::vector<std::vector<int>> voronoi_neighbours_;
   std::vector<Node> nodes_;
   std::map<int, std::pair<int, int>> edge_nodes_;
+  std::map<int, int> flare_of_node_;  // end node -> corner, for cut-short flares
   MedialAxis axis_;
 };
 
