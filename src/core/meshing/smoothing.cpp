@@ -89,6 +89,13 @@ class Smoother {
     result.min_scaled_jacobian_before = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_before = count_inverted();
     if (result.inverted_before > 0) result.sweeps += untangle();
+    // Some folds need a side to shrink on the way out (a high-lift slot,
+    // fuzz aerofoil_3_217): untangled once more without the side floor.
+    if (count_inverted() > 0) {
+      floor_untangling_ = false;
+      result.sweeps += untangle();
+      floor_untangling_ = true;
+    }
     result.sweeps += laplacian_sweeps();
     improve_worst();
     result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
@@ -243,7 +250,9 @@ class Smoother {
     for (StarQuad& s : star) {
       s.v[0] = p;
       const Vec2 next_side = s.v[1] - p, prev_side = s.v[3] - p;
-      if (dot(next_side, next_side) < s.floor_next || dot(prev_side, prev_side) < s.floor_prev) return false;
+      if ((kScaled || floor_untangling_) &&
+          (dot(next_side, next_side) < s.floor_next || dot(prev_side, prev_side) < s.floor_prev))
+        return false;
       const double at = corner_measure<kScaled>(s.v, 0);
       if (at < current.min) return false;
       const double next = corner_measure<kScaled>(s.v, 1);
@@ -663,8 +672,9 @@ class Smoother {
   std::vector<double> first_chord_behind_;  // boundary nodes' chords to those neighbours before smoothing
   std::vector<double> first_chord_ahead_;
   std::vector<double> quad_sj_;
-  std::vector<char> picked_;    // scratch flags of region()
-  std::vector<StarQuad> star_;  // scratch of the node being moved
+  bool floor_untangling_ = true;  // the side floor holds while untangling
+  std::vector<char> picked_;      // scratch flags of region()
+  std::vector<StarQuad> star_;    // scratch of the node being moved
 };
 
 }  // namespace

@@ -32,7 +32,8 @@ struct SmoothingResult {
 // the mesh or the face). Boundary nodes keep their loop and edge, stay
 // strictly between their boundary neighbours, keep places[n].t in step, and
 // leave each boundary interval at least a quarter of its first length; no
-// move shortens an element side below a hundredth of the side facing it.
+// move shortens an element side below a hundredth of the side facing it,
+// except in a second untangling of what the first left folded.
 SmoothingResult smooth_mesh(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options);
 
 }  // namespace mm
