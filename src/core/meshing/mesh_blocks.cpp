@@ -295,12 +295,13 @@ class BlockMesher {
         if (on_loop_vertex(s, static_cast<int>(s.nodes.size()) - 1)) smoothing.fixed.push_back(s.nodes.back());
       }
       // Unless an element stays folded or poor: then boundary nodes may give
-      // way further, up to twice that turning (a block's few intervals on a
-      // hole bunched where its sides meet, nodes facing each other across a
-      // thin gap out of line). Without any bound, untangling a cascade's
-      // first placement slid two nodes off a blade's round nose, and one
-      // chord cut the nose off the mesh (elements outside the face, though
-      // none inverted). Each free pass starts from the last one's nodes with
+      // way further, up to three times that turning (a block's few intervals
+      // on a hole bunched where its sides meet, nodes facing each other
+      // across a thin gap out of line). Without any bound, untangling a
+      // cascade's first placement slid two nodes off a blade's round nose,
+      // and one chord cut the nose off the mesh (elements outside the face,
+      // though none inverted); with twice, a high-lift slot stayed folded
+      // (fuzz aerofoil_3_361). Each free pass starts from the last one's nodes with
       // a fresh search (its chords and stalls reset), which climbs out of
       // optima one pass settles in; the best mesh seen is kept.
       SmoothingResult best = smooth_mesh(face_, mesh_, smoothing);
@@ -308,7 +309,7 @@ class BlockMesher {
         return r.inverted_after > 0 || r.min_scaled_jacobian_after < kPoorAfterSmoothing;
       };
       if (poor(best)) {
-        smoothing.max_boundary_turn = 2 * kMaxTurnPerInterval;
+        smoothing.max_boundary_turn = 3 * kMaxTurnPerInterval;
         QuadMesh trial = mesh_;
         for (int pass = 0; pass < kFreeSmoothingPasses && poor(best); ++pass) {
           const SmoothingResult r = smooth_mesh(face_, trial, smoothing);
