@@ -98,6 +98,10 @@
 // facing it; what untangling leaves folded is untangled again without it.
 // aerofoil_3_361: a slot whose fold needs boundary nodes to slide further
 // than 90 degrees an interval (now 135 in the free passes).
+// bspline_5_1347: a junction with three candidate places but no junction
+// among them, which the held-feet search of bspline_2_152 solved into a
+// junction that turned a block inside out (that search is now only for
+// junctions left with two places).
 #include <gtest/gtest.h>
 
 #include <BRepCheck_Analyzer.hxx>

@@ -549,7 +549,7 @@ class Builder {
                                             [&](int e) { return touches_edge(exact.p, exact.r, e); }));
     };
     std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
-    const auto consider = [&](const Equidistant& exact) {
+    const auto consider = [&](const Equidistant& exact, bool held) {
       if (!exact.converged) return;
       // Two of the places slid into one (from a place on a thin face's
       // far side, the search can run round an end onto the near side):
@@ -570,9 +570,12 @@ class Builder {
         const BoundaryPlace at = nearest_on_run(index_, c, exact.p);
         const double d = distance(at.point, exact.p);
         if (d < exact.r * (1 - 1e-9)) return;  // boundary inside the disc
-        if (d <= exact.r * (1 + 1e-9)) add_distinct(touches, at, kSamePlace * size());
+        if (d <= exact.r * (1 + 1e-9)) touches.push_back(at);
       }
-      for (const BoundaryPlace& at : exact.places) add_distinct(touches, at, kSamePlace * size());
+      // A foot held in its window is a place no candidate's search reaches.
+      if (held) {
+        for (const BoundaryPlace& at : exact.places) add_distinct(touches, at, kSamePlace * size());
+      }
       best = score;
       v.p = exact.p;
       v.r = exact.r;
@@ -581,20 +584,24 @@ class Builder {
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       for (std::size_t j = i + 1; j < candidates.size(); ++j) {
         for (std::size_t k = j + 1; k < candidates.size(); ++k)
-          consider(equidistant(index_, p, {candidates[i], candidates[j], candidates[k]}));
+          consider(equidistant(index_, p, {candidates[i], candidates[j], candidates[k]}), false);
       }
     }
-    if (v.touches.empty()) {
+    if (v.touches.empty() && candidates.size() < 3) {
       // Near a curvature contact the distance from the discretised junction
       // to a run curving nearly round it may have no local minimum where the
       // exact junction's foot is, and the searches slide past it (two sites'
-      // places become one): search again with each foot held near its chord.
+      // places become one, leaving two): search again with each foot held
+      // near its chord. (With three places or more and no junction among
+      // them, held feet found junctions that turned blocks inside out,
+      // fuzz bspline_5_1347.)
       const auto [starts, windows] = chord_windows(node, p);
       for (std::size_t i = 0; i < starts.size(); ++i) {
         for (std::size_t j = i + 1; j < starts.size(); ++j) {
           for (std::size_t k = j + 1; k < starts.size(); ++k)
             consider(
-                equidistant_within(index_, p, {starts[i], starts[j], starts[k]}, {windows[i], windows[j], windows[k]}));
+                equidistant_within(index_, p, {starts[i], starts[j], starts[k]}, {windows[i], windows[j], windows[k]}),
+                true);
         }
       }
     }
