@@ -110,6 +110,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "decomposition_checks.hpp"
@@ -136,6 +137,20 @@ double area_of(const TopoDS_Face& face) {
   GProp_GProps props;
   BRepGProp::SurfaceProperties(face, props, 1e-12);
   return props.Mass();
+}
+
+// The face's medial axis if it and the mesh flow pass their own checks and
+// the tests' medial checks; a test failure (and nothing) if not.
+std::optional<MedialAxis> axis_with_its_flow(const FaceModel& face) {
+  try {
+    MedialAxis axis = compute_medial_axis(face);
+    compute_mesh_flow(face, axis);
+    EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << face.name;
+    return axis;
+  } catch (const SelfCheckError& e) {
+    ADD_FAILURE() << e.what();
+    return std::nullopt;
+  }
 }
 
 TEST(FuzzFaces, EachGetsAValidMesh) {
@@ -236,15 +251,9 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
         "bspline_1_1887", "bspline_1_1917", "bspline_1_1927",  "bspline_1_1977", "bspline_1_1802", "bspline_1_112",
         "bspline_1_497",  "bspline_1_1797", "elliptic_1_1724", "bspline_3_1347", "bspline_5_1012", "bspline_3_982"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
-    MedialAxis axis;
-    try {
-      axis = compute_medial_axis(face);
-      compute_mesh_flow(face, axis);
-    } catch (const SelfCheckError& e) {
-      ADD_FAILURE() << e.what();
-      continue;
-    }
-    EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << name;
+    const std::optional<MedialAxis> checked = axis_with_its_flow(face);
+    if (!checked) continue;
+    const MedialAxis& axis = *checked;
     for (const MedialEdge& e : axis.edges) {
       const std::size_t n = e.points.size();
       if (n < 3) continue;
@@ -277,21 +286,15 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
 // convex corner of 175.5 degrees; the chords' diagram lost the last stretch
 // of the corner's flare, and the branch, ending at no curvature peak, was
 // pruned with the big lobe it crossed (the mesh flow found k = -2). Each
-// axis must pass the medial checks and
-// the mesh flow its own;
-// every junction touches three distinct places and no edge turns back.
+// axis must pass the medial checks and the mesh flow its own; every
+// junction touches three distinct places, every convex corner has its
+// flare and no edge turns back.
 TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBack) {
   for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
-    MedialAxis axis;
-    try {
-      axis = compute_medial_axis(face);
-      compute_mesh_flow(face, axis);
-    } catch (const SelfCheckError& e) {
-      ADD_FAILURE() << e.what();
-      continue;
-    }
-    EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6)) << name;
+    const std::optional<MedialAxis> checked = axis_with_its_flow(face);
+    if (!checked) continue;
+    const MedialAxis& axis = *checked;
     for (const MedialVertex& v : axis.vertices) {
       if (v.kind != MedialVertexKind::Junction) continue;
       int distinct = 0;
