@@ -97,15 +97,15 @@ class Builder {
     return place;
   }
 
+  // The parameter of the point of a segment site's chord nearest to m.
+  static double chord_parameter(const BoundarySegment& s, Vec2 m) {
+    const Vec2 d = s.p1 - s.p0;
+    return s.t0 + std::clamp(dot(m - s.p0, d) / dot(d, d), 0.0, 1.0) * (s.t1 - s.t0);
+  }
+
   BoundaryPlace search_place_of(const Site& site, Vec2 m) const {
     const BoundarySegment& s = graph_.segments[site.segment];
-    double t = s.t0;
-    if (site.part == Site::kEnd) {
-      t = s.t1;
-    } else if (site.part == Site::kSegment) {
-      const Vec2 d = s.p1 - s.p0;
-      t = s.t0 + std::clamp(dot(m - s.p0, d) / dot(d, d), 0.0, 1.0) * (s.t1 - s.t0);
-    }
+    const double t = site.part == Site::kEnd ? s.t1 : site.part == Site::kSegment ? chord_parameter(s, m) : s.t0;
     BoundaryPlace place = index_.place(s.loop, s.edge, t);
     place.corner_itself = site.part != Site::kSegment && place.corner >= 0;
     return nearest_on_run(index_, place, m);
@@ -627,10 +627,8 @@ class Builder {
       seen.push_back(site.segment);
       const BoundarySegment& s = graph_.segments[site.segment];
       const BoundaryEdge& edge = index_.edge(s.loop, s.edge);
-      const Vec2 d = s.p1 - s.p0;
-      const double t = s.t0 + std::clamp(dot(p - s.p0, d) / dot(d, d), 0.0, 1.0) * (s.t1 - s.t0);
       const double reach = 2 * std::abs(s.t1 - s.t0);
-      starts.push_back(index_.place(s.loop, s.edge, t));
+      starts.push_back(index_.place(s.loop, s.edge, chord_parameter(s, p)));
       windows.push_back({std::max(std::min(s.t0, s.t1) - reach, std::min(edge.t_start, edge.t_end)),
                          std::min(std::max(s.t0, s.t1) + reach, std::max(edge.t_start, edge.t_end))});
     }
