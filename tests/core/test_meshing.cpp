@@ -67,5 +67,25 @@ TEST(Meshing, LensOfAnEllipticArcOnItsChordMeshes) {
   }
 }
 
+// A curvilinear triangle of three cusps: two touching unit circles and the
+// line under both. Near a cusp every medial angle tends to pi, so ranking
+// splits by it cut each tip off a few hundredths from its point: a sliver
+// block whose element had the angle between two chords that short
+// (occt_crankarm_30 meshed at 0.02 that way). The tips stay a fair part of
+// the way to the singularity.
+TEST(Meshing, CuspTipsAreNotCutIntoSlivers) {
+  const FaceModel face = test::face({{test::line({-1, 0}, {1, 0}), test::arc({1, 0}, {0, 1}, std::sqrt(0.5) - 1.0),
+                                      test::arc({0, 1}, {-1, 0}, std::sqrt(0.5) - 1.0)}},
+                                    "cusps");
+  ASSERT_NEAR(face.area, 2.0 - kPi / 2, 1e-9);
+  for (const double size : {0.05, 0.1}) {
+    PipelineOptions options;
+    options.meshing.size = size * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << size;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.25) << size;
+  }
+}
+
 }  // namespace
 }  // namespace mm

@@ -1141,18 +1141,28 @@ class Decomposer {
   // lying behind the cut (it was reached walking forwards) or ahead of it.
   static int bend_for(bool unit_behind, int q) { return unit_behind ? 2 + q : 2 - q; }
 
-  // The best permitted split on the path: n = 0 anywhere; n = 1 only where
-  // its bend is convex for the unit and the feature is no singularity.
-  // The best permitted split on the path, and its flow type. An n = 1
+  // The best permitted split on the path, and its flow type: n = 0 anywhere;
+  // n = 1 only where its bend is convex for the unit. An n = 1
   // split leaves a reflex corner beyond it, so it needs no singularity there
   // that must float (none at all, or, for_anchor, none that cannot be fixed).
   struct Chosen {
     int edge, point, n;
   };
   // Among equals, a point on the way to more of the unit's other unresolved
-  // neighbours is better: one split there resolves them all.
+  // neighbours is better: one split there resolves them all. Then medial
+  // angles nearer their ideal, in steps of 20 degrees: finer steps let a few
+  // degrees outrank the position, and round a hole both splits of a ring
+  // then crowded one singularity, leaving the other block wrapped most of the
+  // way round the hole (1 500 random faces: 13 meshes failed that way or
+  // otherwise, 9 with these steps). Then points away from the path's ends,
+  // and last the point nearest the path's middle. On the way to a sharp
+  // corner (a cusp) every medial angle tends to pi at the tip, so the angle
+  // would drag the split into the tip and leave a sliver block there: the
+  // angle is not asked, and the point nearest the unit leaves the tip most
+  // room.
+  static constexpr double kDeviationStep = 0.35;  // radians, 20 degrees
   std::optional<Chosen> best_cut(const std::vector<Step>& path, bool convex_n1_allowed, bool for_anchor = false,
-                                 const std::vector<const Neighbour*>& others = {}) const {
+                                 const std::vector<const Neighbour*>& others = {}, bool to_sharp_corner = false) const {
     double length = 0.0;
     for (const Step& st : path) length += arc(st.edge, st.from, st.to);
     using Score = std::tuple<int, int, int, int, double>;
@@ -1166,10 +1176,11 @@ class Decomposer {
       const auto& pts = axis_.edges[st.edge].points;
       const int lo = static_cast<int>(std::floor(std::min(st.from, st.to))) + 1;
       const int hi = static_cast<int>(std::ceil(std::max(st.from, st.to))) - 1;
-      // Arc length walked up to point i, carried along.
+      // Arc length walked up to point i, carried along in the step's direction.
       double at = walked;
       double at_s = st.from;
-      for (int i = lo; i <= hi; ++i) {
+      const int step = st.forward() ? 1 : -1;
+      for (int i = st.forward() ? lo : hi; i >= lo && i <= hi; i += step) {
         at += arc(st.edge, at_s, i);
         at_s = i;
         const PointFlow& pf = flow_.points[st.edge][i];
@@ -1182,11 +1193,11 @@ class Decomposer {
         const bool outer = at < 0.1 * length || at > 0.9 * length;
         int shared = 0;
         for (const Neighbour* other : others) shared += on_path(other->path, st.edge, i) ? 1 : 0;
-        candidates.push_back(
-            {{n, -shared, static_cast<int>(pf.deviation / 0.035), outer ? 1 : 0, std::abs(at - 0.5 * length)},
-             st.edge,
-             i,
-             st.forward() ? 1 : -1});
+        candidates.push_back({{n, -shared, to_sharp_corner ? 0 : static_cast<int>(pf.deviation / kDeviationStep),
+                               outer ? 1 : 0, to_sharp_corner ? at : std::abs(at - 0.5 * length)},
+                              st.edge,
+                              i,
+                              st.forward() ? 1 : -1});
       }
       walked += arc(st.edge, st.from, st.to);
     }
@@ -1312,7 +1323,7 @@ class Decomposer {
         const bool to_unit = nb.kind == FeatureKind::Unit;
         if (to_unit && !floating(nb.id)) continue;
         const bool n1_allowed = !to_unit || (anchor && fixable(nb.id));
-        if (const auto where = best_cut(nb.path, n1_allowed, anchor, unresolved)) {
+        if (const auto where = best_cut(nb.path, n1_allowed, anchor, unresolved, nb.kind == FeatureKind::SharpCorner)) {
           cut_edge_at_point(where->edge, where->point, SplitReason::Resolve);
           if (to_unit && where->n == 1) {
             fix(nb.id);  // its side of the split has the reflex corner
