@@ -207,11 +207,15 @@ TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
 // on one bump, bspline_1_117), so the boundary came nearer than the radius.
 // bspline_1_1257 also passed its self-check wrongly once that was fixed: the
 // check's nearest place missed a hole's edge a hair farther than the outline
-// from every one of the six nearest samples. Each axis is now exact, checked
-// against an independent fine probe of the boundary.
+// from every one of the six nearest samples. bspline_6_1277 (one closed
+// B-spline with a reflex corner at its seam) passed its self-check with an
+// edge point 2e-6 nearer the boundary than its radius: the search from that
+// corner tried the edge's start twice (the edge before the corner is the
+// edge after it) and never its end, where the nearer foot was. Each axis is
+// now exact, checked against an independent fine probe of the boundary.
 TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
   for (const char* name : {"bspline_1_117", "bspline_1_717", "bspline_1_1257", "bspline_1_1762", "bspline_1_1832",
-                           "bspline_3_17", "bspline_3_767"}) {
+                           "bspline_3_17", "bspline_3_767", "bspline_6_1277"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     MedialAxis axis;
     try {

@@ -172,11 +172,14 @@ BoundaryPlace nearest_from_corner(const BoundaryIndex& index, const BoundaryPlac
   const int after = corner.corner, before = (corner.corner + count - 1) % count;
   BoundaryPlace best = corner;
   best.corner_itself = true;
-  for (int e : {before, after}) {
+  // The edge ending at the corner, then the one starting there (the same
+  // edge when the loop is one closed curve with its seam at the corner).
+  for (const bool from_end : {true, false}) {
+    const int e = from_end ? before : after;
     const BoundaryEdge& edge = index.edge(corner.loop, e);
-    const Vec2 into = e == after ? edge_tangent(edge, edge.t_start) : -1.0 * edge_tangent(edge, edge.t_end);
+    const Vec2 into = from_end ? -1.0 * edge_tangent(edge, edge.t_end) : edge_tangent(edge, edge.t_start);
     if (dot(m - corner.point, into) <= 0.0) continue;  // moving onto this edge leads away from m
-    BoundaryPlace start{corner.loop, e, e == after ? edge.t_start : edge.t_end, -1, corner.point};
+    BoundaryPlace start{corner.loop, e, from_end ? edge.t_end : edge.t_start, -1, corner.point};
     const BoundaryPlace found = nearest_from_inside(index, start, m);
     if (distance(found.point, m) < distance(best.point, m) * (1 - 1e-14)) best = found;
   }
