@@ -1302,14 +1302,19 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
   MedialAxis best = Builder(face, 1.0).build();
   std::vector<Vec2> best_nearest = nearest_points(boundary, best);
   double best_violation = violation(best_nearest, best);
+  bool best_whole = topology_problem(best, face.holes()).empty();
   double fineness = 1.0;
-  for (int i = 0; i < kMaxRefinements && best_violation > tolerance; ++i) {
+  // Finer chords where a point is off or the axis has a cycle or a piece too
+  // many; an axis of the right topology outranks a more exact one.
+  for (int i = 0; i < kMaxRefinements && (best_violation > tolerance || !best_whole); ++i) {
     fineness *= kRefinement;
     MedialAxis finer = Builder(face, fineness).build();
     std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
     const double finer_violation = violation(finer_nearest, finer);
-    if (finer_violation < best_violation) {
+    const bool finer_whole = topology_problem(finer, face.holes()).empty();
+    if (finer_whole > best_whole || (finer_whole == best_whole && finer_violation < best_violation)) {
       best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
+      best_whole = finer_whole;
     }
   }
   repair_edge_points(index, boundary, tolerance, best, best_nearest);
