@@ -9,6 +9,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "meshing/interval_assignment.hpp"
 
@@ -434,6 +435,40 @@ TEST(IntervalAssignment, FaceSizedProblemIsSolvedAndValid) {
     EXPECT_GE(a.counts[horizontal[x][0]], std::floor(low)) << x;
     EXPECT_LE(a.counts[horizontal[x][0]], std::ceil(high)) << x;
   }
+}
+
+// An S-shaped submap block (east, north, west, north, west, south, east,
+// south; reflex corners 3 and 7) whose middle is too short: its arms cross.
+// The pairs that keep it apart run opposite ways across the block; kept
+// apart one by one as mesh_blocks does, the counts give a simple outline.
+TEST(IntervalAssignment, FoldedSubmapOutlineNamesTheSidesToKeepApart) {
+  BlockShape s;
+  s.kind = BlockTemplate::Submap;
+  s.corner_types = {1, 1, 1, 3, 1, 1, 1, 3};
+  for (int i = 0; i < 8; ++i) s.side_segments.push_back({i});
+  EXPECT_TRUE(folded_sides(s, {4, 1, 2, 1, 3, 1, 1, 1}).empty());
+  const std::vector<FoldedSides> pairs = folded_sides(s, {2, 1, 3, 2, 1, 1, 2, 2});
+  ASSERT_FALSE(pairs.empty());
+  for (const FoldedSides& p : pairs) {
+    EXPECT_FALSE(p.outside);
+  }
+  IntervalProblem problem;
+  for (const double goal : {2.0, 1.0, 3.0, 2.0, 1.0, 1.0, 2.0, 2.0}) problem.segments.push_back({goal, 1});
+  problem.blocks = {s};
+  IntervalAssignment a = assign_intervals(problem);
+  EXPECT_FALSE(folded_sides(problem.blocks[0], a.counts).empty());
+  for (int round = 0; round < 8; ++round) {
+    const std::vector<FoldedSides> folded = folded_sides(problem.blocks[0], a.counts);
+    auto& facing = problem.blocks[0].facing;
+    const auto fresh = std::find_if(folded.begin(), folded.end(), [&](const FoldedSides& f) {
+      return std::find(facing.begin(), facing.end(), std::make_pair(f.s, f.t)) == facing.end();
+    });
+    if (fresh == folded.end()) break;
+    facing.emplace_back(fresh->s, fresh->t);
+    a = assign_intervals(problem);
+  }
+  expect_valid(problem, a);
+  EXPECT_TRUE(folded_sides(problem.blocks[0], a.counts).empty());
 }
 
 }  // namespace

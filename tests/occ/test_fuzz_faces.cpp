@@ -153,6 +153,11 @@ std::optional<MedialAxis> axis_with_its_flow(const FaceModel& face) {
   }
 }
 
+// Faces that once stopped or failed a check somewhere in the pipeline.
+// filleted_7_740, filleted_8_655 and plate_8_891 stopped with a submapped
+// block whose lattice outline met itself for the counts given (sides the
+// decomposition did not name as facing, or the arms of an S crossing): the
+// counts are now solved again with those sides kept apart.
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name :
        {"strip_7_63",     "strip_7_313",     "bspline_8_117",  "elliptic_9_99",  "bspline_1_37",   "elliptic_2_1614",
@@ -161,7 +166,8 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
         "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
         "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",  "bspline_1_1157", "bspline_1_112",
         "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226", "bspline_2_152",  "filleted_2_975",
-        "bspline_2_1477", "cascade_2_381",   "cascade_2_387",  "bspline_3_422",  "aerofoil_3_217"}) {
+        "bspline_2_1477", "cascade_2_381",   "cascade_2_387",  "bspline_3_422",  "aerofoil_3_217", "filleted_7_740",
+        "filleted_8_655", "plate_8_891"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;

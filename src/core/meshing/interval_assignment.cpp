@@ -722,6 +722,49 @@ size_t first_impossible_block(const IntervalProblem& problem) {
 
 }  // namespace
 
+std::vector<FoldedSides> folded_sides(const BlockShape& block, const std::vector<int>& counts) {
+  if (block.kind != BlockTemplate::Submap) return {};
+  const std::vector<int> dirs = submap_directions(block, 0);
+  const int sides = static_cast<int>(block.side_segments.size());
+  // Sides s before t running opposite ways, as a facing pair by the turning between them.
+  std::vector<FoldedSides> pairs;
+  const auto add_pair = [&](int s, int t) {
+    if (s < 0 || t >= sides || s >= t || (dirs[s] + 2) % 4 != dirs[t]) return;
+    int turning = 0;  // from side s's direction round to side t's
+    for (int c = s + 1; c <= t; ++c) turning += 2 - block.corner_types[c];
+    if (turning == 2) pairs.push_back({s, t, false});
+    if (turning == -2) pairs.push_back({s, t, true});
+    if (turning == 6) pairs.push_back({t, s, true});
+  };
+  const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
+  std::map<std::pair<int, int>, int> side_at;  // lattice point -> the side whose run reached it
+  int x = 0, y = 0;
+  for (int i = 0; i < sides; ++i) {
+    int n = 0;
+    for (const int seg : block.side_segments[i]) n += counts[seg];
+    for (int k = 0; k < n; ++k, x += step_x[dirs[i]], y += step_y[dirs[i]]) {
+      const auto [it, fresh] = side_at.emplace(std::make_pair(x, y), i);
+      if (fresh) continue;
+      const int other = it->second;
+      // Sides along one segment both ways (a split to a hole) meet on purpose: a slit.
+      const auto& mine = block.side_segments[i];
+      if (std::any_of(block.side_segments[other].begin(), block.side_segments[other].end(),
+                      [&](int seg) { return std::find(mine.begin(), mine.end(), seg) != mine.end(); }))
+        continue;
+      // Running opposite ways they are the pair; crossing, a side beside one
+      // of them runs opposite to the other (past a reflex corner: the two
+      // arms of an S whose middle got too short).
+      add_pair(other, i);
+      add_pair(other, i - 1);
+      add_pair(other + 1, i);
+      add_pair(other - 1, i);
+      add_pair(other, i + 1);
+      return pairs;
+    }
+  }
+  return pairs;
+}
+
 IntervalAssignment assign_intervals(const IntervalProblem& problem) {
   validate(problem);
   for (size_t b = 0; b < problem.blocks.size(); ++b)

@@ -63,4 +63,18 @@ struct IntervalsInfeasible : std::runtime_error {
 // those before it.
 IntervalAssignment assign_intervals(const IntervalProblem& problem);
 
+// Where a submapped block's lattice outline meets itself for the given
+// counts (per segment; no mesh then), the facing pairs for BlockShape that
+// would keep it apart, best first: the two sides that meet if they run
+// opposite ways, else those beside them that run opposite to the other. A
+// pair lies across the block (outside = false) when the outline turns left
+// round from s to t, across something outside it when it turns right. The
+// decomposition's facing pairs are only the sides straight across from each
+// other; a winding block may fold elsewhere. Empty when the outline is simple.
+struct FoldedSides {
+  int s = -1, t = -1;
+  bool outside = false;
+};
+std::vector<FoldedSides> folded_sides(const BlockShape& block, const std::vector<int>& counts);
+
 }  // namespace mm

@@ -194,17 +194,48 @@ std::string at(Vec2 p) {
 // block outline ends of the faces meshed with it lie on its edges.
 using EdgeCuts = std::vector<std::vector<std::vector<double>>>;
 
+// Rounds of interval assignment that may each keep more sides apart.
+constexpr int kMaxSeparationRounds = 8;
+
 // Interval assignment of the problem make_problem() builds; when no counts
 // satisfy the blocks at all, once more after relax() has changed the blocks
-// (relax returns whether it changed any).
-template <class MakeProblem, class Relax>
-IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax& relax) {
+// (relax returns whether it changed any). Then, while the counts fold a
+// submapped block's lattice outline onto itself (its outline would meet
+// itself: no mesh), the two sides that meet are kept apart as facing sides
+// (separate(block, sides) adds them to the block's shape, returning whether
+// they were new; the next candidate pair when not) and the counts solved again.
+template <class MakeProblem, class Relax, class Separate>
+IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax& relax, const Separate& separate) {
+  IntervalAssignment assignment;
   try {
-    return assign_intervals(make_problem());
+    assignment = assign_intervals(make_problem());
   } catch (const IntervalsInfeasible&) {
     if (!relax()) throw;
-    return assign_intervals(make_problem());
+    assignment = assign_intervals(make_problem());
   }
+  for (int round = 0; round < kMaxSeparationRounds; ++round) {
+    const IntervalProblem problem = make_problem();
+    bool separated = false;
+    for (std::size_t b = 0; b < problem.blocks.size(); ++b) {
+      for (const FoldedSides& folded : folded_sides(problem.blocks[b], assignment.counts)) {
+        if (!separate(b, folded)) continue;
+        separated = true;
+        break;
+      }
+    }
+    if (!separated) break;
+    assignment = assign_intervals(make_problem());
+  }
+  return assignment;
+}
+
+// Adds a facing pair to a block's shape; false if it was there already.
+bool add_facing(BlockShape& shape, const FoldedSides& folded) {
+  auto& pairs = folded.outside ? shape.facing_outside : shape.facing;
+  const std::pair<int, int> pair{folded.s, folded.t};
+  if (std::find(pairs.begin(), pairs.end(), pair) != pairs.end()) return false;
+  pairs.push_back(pair);
+  return true;
 }
 
 // One face's blocks, in phases: prepare (segments and their shared ends),
@@ -233,7 +264,8 @@ class BlockMesher {
                                   [&] {
                                     relaxed = flatten_three_element_corners();
                                     return !relaxed.empty();
-                                  });
+                                  },
+                                  [&](std::size_t b, const FoldedSides& folded) { return separate(b, folded); });
     } catch (const SelfCheckError&) {
       throw;
     } catch (const std::exception& e) {
@@ -429,6 +461,8 @@ class BlockMesher {
     }
     return notes;
   }
+
+  bool separate(std::size_t block, const FoldedSides& folded) { return add_facing(shapes_[block], folded); }
 
   IntervalProblem interval_problem() const {
     IntervalProblem problem;
@@ -1348,14 +1382,23 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   IntervalAssignment intervals;
   std::vector<std::vector<std::string>> relaxed(faces.size());
   try {
-    intervals = assign_or_relax(problem, [&] {
-      bool any = false;
-      for (std::size_t f = 0; f < faces.size(); ++f) {
-        relaxed[f] = meshers[f]->flatten_three_element_corners();
-        any = any || !relaxed[f].empty();
-      }
-      return any;
-    });
+    intervals = assign_or_relax(
+        problem,
+        [&] {
+          bool any = false;
+          for (std::size_t f = 0; f < faces.size(); ++f) {
+            relaxed[f] = meshers[f]->flatten_three_element_corners();
+            any = any || !relaxed[f].empty();
+          }
+          return any;
+        },
+        [&](std::size_t b, const FoldedSides& folded) {
+          for (const auto& m : meshers) {
+            if (b < m->shapes().size()) return m->separate(b, folded);
+            b -= m->shapes().size();
+          }
+          return false;
+        });
   } catch (const std::exception& e) {
     throw SelfCheckError(face_names(faces),
                          std::string("mesh: the faces' blocks cannot be given interval counts together: ") + e.what());
