@@ -127,6 +127,21 @@ TEST(MultiFaceOcc, PlateSplitThroughItsHoleSharesBothCuts) {
   }
 }
 
+// Face 19 of the sheet-metal part (a U) and its five neighbours at H = 4:
+// each pair meshed, but the six together once forced counts on the U whose
+// submap outline met itself (README's limit until 2026-11-27); they mesh
+// together now, each face's mesh valid and every side in at most two quads.
+TEST(MultiFaceOcc, SheetMetalUAndItsFiveNeighboursMeshTogether) {
+  const std::vector<FaceModel> faces =
+      read_face_models(test::shared_dir() + "/realcad/step/trimesh_featuretype.STEP", {19, 20, 22, 80, 81, 82});
+  const MeshedFaces m = mesh_all(faces, 4.0);
+  EXPECT_GE(shared_edge_count(m.shared), 5);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    EXPECT_TRUE(test::mesh_problems(faces[f], m.faces[f].blocks.mesh, 4.0).empty()) << faces[f].name;
+  for (const auto& [side, count] : side_uses(m.mesh)) EXPECT_LE(count, 2);
+  EXPECT_EQ(m.quality.inverted, 0);
+}
+
 TEST(MultiFaceCommand, TwoFacesWriteOneInpThatMeshioReads) {
   const std::string file = two_rectangles_file();
   const std::string out = test::scratch_dir() + "/two_rectangles.inp";
