@@ -78,6 +78,26 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
         }
       }
     }
+    // Each boundary piece lies on its edge between its parameters, and each
+    // piece ends where the next begins: the mesh builds its nodes from them.
+    std::vector<const OutlinePiece*> pieces;
+    for (const BlockSide& side : block.sides)
+      for (const OutlinePiece& piece : side.pieces) pieces.push_back(&piece);
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const OutlinePiece& piece = *pieces[i];
+      const Vec2 from = piece.split >= 0 ? piece.points.front()
+                                         : edge_point(face.loops[piece.loop].edges[piece.edge], piece.t_from).p;
+      const Vec2 to =
+          piece.split >= 0 ? piece.points.back() : edge_point(face.loops[piece.loop].edges[piece.edge], piece.t_to).p;
+      const OutlinePiece& next = *pieces[(i + 1) % pieces.size()];
+      const Vec2 next_from =
+          next.split >= 0 ? next.points.front() : edge_point(face.loops[next.loop].edges[next.edge], next.t_from).p;
+      if (distance(from, piece.points.front()) > 1e-5 * face.size || distance(to, next_from) > 1e-5 * face.size) {
+        problem(name + " has an outline piece off its edge or apart from the next at (" + std::to_string(to.x) + ", " +
+                std::to_string(to.y) + ")");
+        break;
+      }
+    }
     int turning = 0;
     for (const BlockCorner& c : block.corners) turning += 2 - c.type;
     int inside_k = 0;

@@ -389,6 +389,24 @@ TEST(FuzzFaces, ContradictoryTemplatesAreRelaxedWithANote) {
 // The blocks tile the face: their areas (exact line integrals) add up to the
 // face's, every check a user would make holds, and OCC cuts the face along
 // the splits into valid faces whose areas add up to the face's.
+// filleted_6_915 (fuzz seed 6): the boundary walk round a fillet 1.4e-5 long
+// labelled a piece's end with that arc while its point lay 0.62 further on,
+// on the next edge; the decomposition passed its checks and the mesh
+// stopped joining block outlines. The decomposition now checks that its
+// pieces meet each other and their edges: such a face stops there, loudly.
+TEST(FuzzFaces, DecompositionPiecesMeetTheirEdgesOrTheStageSaysSo) {
+  const FaceModel face = face_model_from_brep_string(fuzz_face_text("filleted_6_915"), "filleted_6_915");
+  const MedialAxis axis = compute_medial_axis(face);
+  const MeshFlow flow = compute_mesh_flow(face, axis);
+  try {
+    const Decomposition d = decompose(face, axis, flow, {});
+    const auto problems = test::decomposition_problems(face, flow, d);
+    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+  } catch (const SelfCheckError& e) {
+    EXPECT_NE(std::string(e.what()).find("decomposition"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FuzzFaces, DecompositionsTileTheFace) {
   // With whether the decomposition must say it fell back.
   for (const auto& [name, fallback] : std::vector<std::pair<std::string, bool>>{

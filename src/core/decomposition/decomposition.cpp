@@ -2188,6 +2188,9 @@ class Decomposer {
     for (const Outline& o : outlines) {
       if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
+      if (const double gap = widest_joint(b); gap > 1e-5 * face_.size + 10 * face_.tolerance)
+        throw SelfCheckFailure("decomposition: pieces of a block's outline miss each other or their edges by " +
+                               std::to_string(gap));
       if (splits_cross(b)) throw SelfCheckFailure("decomposition: a block's outline crosses itself");
       // An outline that runs clockwise is a block turned inside out (the
       // areas may still add up, the others' covering it twice).
@@ -2303,6 +2306,28 @@ class Decomposer {
       }
     }
     return false;
+  }
+
+  // The widest gap round a block's outline between a piece's end and the
+  // next one's start, or between a boundary piece's ends and its edge at its
+  // parameters (the mesh puts the nodes there and joins the ends into one: a
+  // boundary walk that mixed up the edges by a shorter one shows here).
+  double widest_joint(const Block& b) const {
+    std::vector<const OutlinePiece*> pieces;
+    for (const BlockSide& side : b.sides)
+      for (const OutlinePiece& piece : side.pieces) pieces.push_back(&piece);
+    double widest = 0.0;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const OutlinePiece& piece = *pieces[i];
+      const OutlinePiece& next = *pieces[(i + 1) % pieces.size()];
+      if (piece.points.empty() || next.points.empty()) continue;
+      widest = std::max(widest, distance(piece.points.back(), next.points.front()));
+      if (piece.split >= 0) continue;
+      const BoundaryEdge& edge = face_.loops[piece.loop].edges[piece.edge];
+      widest = std::max({widest, distance(piece.points.front(), edge_point(edge, piece.t_from).p),
+                         distance(piece.points.back(), edge_point(edge, piece.t_to).p)});
+    }
+    return widest;
   }
 
   Block make_block(const Outline& o) const {
