@@ -206,15 +206,16 @@ constexpr int kMaxSeparationRounds = 8;
 // they were new; the next candidate pair when not) and the counts solved again.
 template <class MakeProblem, class Relax, class Separate>
 IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax& relax, const Separate& separate) {
+  IntervalProblem problem = make_problem();
   IntervalAssignment assignment;
   try {
-    assignment = assign_intervals(make_problem());
+    assignment = assign_intervals(problem);
   } catch (const IntervalsInfeasible&) {
     if (!relax()) throw;
-    assignment = assign_intervals(make_problem());
+    problem = make_problem();
+    assignment = assign_intervals(problem);
   }
   for (int round = 0; round < kMaxSeparationRounds; ++round) {
-    const IntervalProblem problem = make_problem();
     bool separated = false;
     for (std::size_t b = 0; b < problem.blocks.size(); ++b) {
       for (const FoldedSides& folded : folded_sides(problem.blocks[b], assignment.counts)) {
@@ -224,7 +225,8 @@ IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax&
       }
     }
     if (!separated) break;
-    assignment = assign_intervals(make_problem());
+    problem = make_problem();
+    assignment = assign_intervals(problem);
   }
   return assignment;
 }
