@@ -23,7 +23,10 @@ constexpr int kRelaxSweeps = 50;
 // and cannot help the worst element.
 constexpr double kGoodEnough = 0.9;
 constexpr int kWorstPasses = 5;
-// Quads within this much of the minimum scaled Jacobian count as the worst.
+// Quads within this much of the minimum scaled Jacobian count as the worst:
+// their nodes' room lifts it. Once the minimum is good enough, the band
+// shrinks to this fraction of its distance from 1, or it would hold nearly
+// every quad and the search would cost far more than it gains.
 constexpr double kWorstBand = 0.1;
 // At most this many of the worst quads get the direct search per pass, so a
 // large mesh with a wide band of poor quads stays cheap.
@@ -642,9 +645,10 @@ class Smoother {
     std::vector<int> worst_quads, nodes;
     for (int pass = 0; pass < kWorstPasses; ++pass) {
       const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+      const double band = worst < kGoodEnough ? kWorstBand : kWorstBand * (1.0 - worst);
       worst_quads.clear();
       for (std::size_t q = 0; q < quad_sj_.size(); ++q)
-        if (quad_sj_[q] < worst + kWorstBand) worst_quads.push_back(static_cast<int>(q));
+        if (quad_sj_[q] < worst + band) worst_quads.push_back(static_cast<int>(q));
       if (worst_quads.size() > kWorstQuads)
         std::nth_element(worst_quads.begin(), worst_quads.begin() + kWorstQuads, worst_quads.end(),
                          [&](int a, int b) { return quad_sj_[a] < quad_sj_[b]; });
