@@ -32,10 +32,9 @@ std::string format(Vec2 p) {
   return "(" + format(p.x) + ", " + format(p.y) + ")";
 }
 
-// Parameter pieces [lo, hi] split at B-spline knots, each knot span cut in
-// `per_span` (a curve without knots in that many pieces), and so that a
-// circle or ellipse piece spans at most an eighth of a turn.
-std::vector<double> pieces(const BoundaryEdge& edge, int per_span = 4) {
+// Parameter pieces [lo, hi] split at B-spline knots, and so that a circle or
+// ellipse piece spans at most an eighth of a turn.
+std::vector<double> pieces(const BoundaryEdge& edge) {
   const double lo = std::min(edge.t_start, edge.t_end);
   const double hi = std::max(edge.t_start, edge.t_end);
   std::vector<double> cuts{lo};
@@ -46,7 +45,7 @@ std::vector<double> pieces(const BoundaryEdge& edge, int per_span = 4) {
   if (type == CurveType::Circle || type == CurveType::Ellipse) {
     per_piece = std::max(1, static_cast<int>(std::ceil((hi - lo) / (kPi / 4))));
   } else if (type == CurveType::BSpline || type == CurveType::Other) {
-    per_piece = per_span;
+    per_piece = 4;
   }
   std::vector<double> result;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -354,35 +353,24 @@ double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, 
   return t_to >= t_from ? total : -total;
 }
 
-std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance, double max_turn,
-                                           SplineStart start) {
-  // A B-spline starts from its knot spans cut in four, or, if asked, from
-  // the spans whole when the degree is at most 3: such a span bends one way
-  // or has one inflection, which the test below, at three points and three
-  // tangents of each interval, does not miss. A span of higher degree may
-  // wave more often.
-  const auto* spline = std::get_if<BSplineCurve>(&edge.curve);
-  const bool whole = start == SplineStart::WholeCubicSpans && spline && spline->degree <= 3;
-  std::vector<double> cuts = pieces(edge, whole ? 1 : 4);
+std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance, double max_turn) {
+  std::vector<double> cuts = pieces(edge);
   if (edge.t_end < edge.t_start) std::reverse(cuts.begin(), cuts.end());
   std::vector<double> params{edge.t_start};
   if (curve_type(edge.curve) == CurveType::Line) {
     params.push_back(edge.t_end);
     return params;
   }
-  // Bisect a parameter interval until its chord is close enough to the curve
-  // at its quarter points and its tangent turns little on either half.
+  // Bisect a parameter interval until its chord is close enough to the curve.
   const auto refine = [&](auto&& self, double a, double b, int depth) -> void {
     const CurvePoint pa = evaluate(edge.curve, a), pb = evaluate(edge.curve, b);
     const double m = 0.5 * (a + b);
-    const CurvePoint pm = evaluate(edge.curve, m);
+    const Vec2 pm = evaluate_point(edge, m);
     const Vec2 chord = pb.p - pa.p;
     const double len = norm(chord);
-    const auto deviation = [&](Vec2 p) { return len > 0 ? std::abs(cross(chord, p - pa.p)) / len : distance(p, pa.p); };
-    const double worst = std::max({deviation(pm.p), deviation(evaluate_point(edge.curve, 0.5 * (a + m))),
-                                   deviation(evaluate_point(edge.curve, 0.5 * (m + b)))});
-    const double turn = std::abs(signed_angle(pa.d1, pm.d1)) + std::abs(signed_angle(pm.d1, pb.d1));
-    if (depth < 24 && (worst > chord_tolerance || turn > max_turn)) {
+    const double deviation = len > 0 ? std::abs(cross(chord, pm - pa.p)) / len : distance(pm, pa.p);
+    const double turn = std::abs(signed_angle(pa.d1, pb.d1));
+    if (depth < 24 && (deviation > chord_tolerance || turn > max_turn)) {
       self(self, a, m, depth + 1);
       self(self, m, b, depth + 1);
     } else {

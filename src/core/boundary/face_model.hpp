@@ -102,16 +102,10 @@ std::vector<Vec2> sample_edge(const BoundaryEdge& edge, double chord_tolerance);
 // The points of an edge at the given parameters (t_start first, t_end last),
 // its ends replaced by the snapped vertices so neighbouring edges share them.
 std::vector<Vec2> edge_points(const BoundaryEdge& edge, const std::vector<double>& params);
-// Where sample_edge_parameters starts a B-spline from: each knot span cut
-// in four, or the knot spans whole where the degree is at most 3 (fewer
-// chords on interpolated outlines of many short spans).
-enum class SplineStart { QuarterSpans, WholeCubicSpans };
 // The curve parameters of those points, t_start first and t_end last; the
-// chords turn by at most max_turn radians (15 degrees by default) and stray
-// from the curve by at most chord_tolerance at their quarter points.
+// chords turn by at most max_turn radians (15 degrees by default).
 std::vector<double> sample_edge_parameters(const BoundaryEdge& edge, double chord_tolerance,
-                                           double max_turn = 15.0 * kPi / 180.0,
-                                           SplineStart start = SplineStart::QuarterSpans);
+                                           double max_turn = 15.0 * kPi / 180.0);
 // The loop as a closed polyline (first point not repeated at the end).
 std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance);
 

@@ -74,13 +74,8 @@ std::vector<double> chord_parameters(const FaceModel& face, int loop, int edge, 
   // rebuilds from finer chords should a coarse one mislead it.
   const bool closed_hole = loop > 0 && face.loops[loop].edges.size() == 1;
   const bool concave = closed_hole && curvature(e, 0.5 * (e.t_start + e.t_end)) < 0;
-  // Such a hole's B-spline (an aerofoil section interpolated through many
-  // points) starts from its knot spans whole: cut in four, they made most of
-  // the chords and of the diagram's time. Outlines keep the quarter spans:
-  // there the chords' diagram places the branch ends at curvature contacts.
-  std::vector<double> params =
-      concave ? sample_edge_parameters(e, 5 * chord_tolerance, 2 * max_turn, SplineStart::WholeCubicSpans)
-              : sample_edge_parameters(e, chord_tolerance, max_turn);
+  std::vector<double> params = concave ? sample_edge_parameters(e, 5 * chord_tolerance, 2 * max_turn)
+                                       : sample_edge_parameters(e, chord_tolerance, max_turn);
   if (curve_type(e.curve) == CurveType::Line) return params;
   const int count = static_cast<int>(face.loops[loop].edges.size());
   const auto chord_angle = [&](double t_end, double t_other) {
