@@ -501,7 +501,7 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio)
             y[i][s] += step_y[dirs[i - 1]];
           }
         }
-        // The count columns are the segments' own, in order: column s is segment s's.
+        // Dense entry s is segment s, whose count is column count_columns[s].
         const auto sparse = [&](const Dense& dense) {
           LinearExpr e;
           for (std::size_t s = 0; s < counts; ++s)
