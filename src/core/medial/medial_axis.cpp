@@ -1302,19 +1302,20 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
   MedialAxis best = Builder(face, 1.0).build();
   std::vector<Vec2> best_nearest = nearest_points(boundary, best);
   double best_violation = violation(best_nearest, best);
-  bool best_whole = topology_problem(best, face.holes()).empty();
+  std::string best_problem = topology_problem(best, face.holes());  // empty: the right topology
   double fineness = 1.0;
   // Finer chords where a point is off or the axis has a cycle or a piece too
   // many; an axis of the right topology outranks a more exact one.
-  for (int i = 0; i < kMaxRefinements && (best_violation > tolerance || !best_whole); ++i) {
+  for (int i = 0; i < kMaxRefinements && (best_violation > tolerance || !best_problem.empty()); ++i) {
     fineness *= kRefinement;
     MedialAxis finer = Builder(face, fineness).build();
     std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
     const double finer_violation = violation(finer_nearest, finer);
-    const bool finer_whole = topology_problem(finer, face.holes()).empty();
+    std::string finer_problem = topology_problem(finer, face.holes());
+    const bool finer_whole = finer_problem.empty(), best_whole = best_problem.empty();
     if (finer_whole > best_whole || (finer_whole == best_whole && finer_violation < best_violation)) {
       best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
-      best_whole = finer_whole;
+      best_problem = std::move(finer_problem);
     }
   }
   repair_edge_points(index, boundary, tolerance, best, best_nearest);
@@ -1327,8 +1328,8 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
           << " off its radius (allowed " << allowed << ")";
     throw SelfCheckError(face.name, check.str());
   }
-  if (const std::string problem = topology_problem(best, face.holes()); !problem.empty())
-    throw SelfCheckError(face.name, "medial axis: " + problem);
+  // Repairing moves edge points only: the topology is the one found above.
+  if (!best_problem.empty()) throw SelfCheckError(face.name, "medial axis: " + best_problem);
   return best;
 }
 
