@@ -68,10 +68,9 @@ double bracketed_nearest(const BoundaryEdge& edge, double a, double b, double t,
   return t;
 }
 
-// Nearest parameter to m of a single edge's part [a, b], from the guess t;
-// ends are the curve's points at a and b.
-double nearest_parameter(const BoundaryEdge& edge, double a, double b, const std::array<Vec2, 2>& ends, double t,
-                         Vec2 m) {
+// Nearest parameter to m of a single edge's part [a, b], from the guess t: a
+// local search, like nearest_on_run.
+double nearest_parameter(const BoundaryEdge& edge, double a, double b, double t, Vec2 m) {
   if (const auto* line = std::get_if<LineCurve>(&edge.curve)) {
     return std::clamp(dot(m - line->origin, line->direction), a, b);
   }
@@ -87,7 +86,7 @@ double nearest_parameter(const BoundaryEdge& edge, double a, double b, const std
   }
   // General curve: Newton's method on g(t) = (C(t) - m) . C'(t) = 0, kept in range.
   t = std::clamp(t, a, b);
-  CurvePoint c = evaluate(edge.curve, t);  // the curve at t (once settled, its point only)
+  CurvePoint c = evaluate(edge.curve, t);
   bool settled = false;
   for (int i = 0; i < 50 && !settled; ++i) {
     const double g = dot(c.p - m, c.d1);
@@ -108,22 +107,14 @@ double nearest_parameter(const BoundaryEdge& edge, double a, double b, const std
       q = next == t ? c.p : evaluate_point(edge.curve, next);
     }
     settled = std::abs(next - t) <= 1e-15 * (b - a);
-    if (settled) {
-      c.p = q;  // past the search only the point is wanted, and q is it
-    } else if (next != t) {
-      c = evaluate(edge.curve, next);
-    }
+    if (!settled && next != t) c = evaluate(edge.curve, next);
     t = next;
   }
-  if (!settled) {
-    t = bracketed_nearest(edge, a, b, t, m);
-    c = evaluate(edge.curve, t);
-  }
-  // Newton may settle on an end where the other end is nearer.
-  double dt = distance(c.p, m);
-  if (const double da = distance(ends[0], m); da < dt) t = a, dt = da;
-  if (distance(ends[1], m) < dt) t = b;
-  return t;
+  // The edge's other end is never taken instead, however near: that jump
+  // across the edge made a foot on one side of a long curve land on the
+  // corner at its far end (a junction's three feet became two, fuzz
+  // elliptic_10_129; a genuine branch was pruned, bspline_1_977).
+  return settled ? t : bracketed_nearest(edge, a, b, t, m);
 }
 
 }  // namespace
@@ -131,11 +122,6 @@ double nearest_parameter(const BoundaryEdge& edge, double a, double b, const std
 BoundaryIndex::BoundaryIndex(const FaceModel& face) : face_(face) {
   for (const Loop& loop : face.loops) corner_.emplace_back(loop.edges.size(), false);
   reflex_ = corner_;
-  for (const Loop& loop : face.loops) {
-    curve_ends_.emplace_back();
-    for (const BoundaryEdge& e : loop.edges)
-      curve_ends_.back().push_back({evaluate_point(e.curve, lo(e)), evaluate_point(e.curve, hi(e))});
-  }
   for (const Corner& c : face.corners) {
     corner_[c.loop][c.vertex] = true;
     reflex_[c.loop][c.vertex] = c.angle > kPi;
@@ -192,7 +178,7 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
   const int count = index.edge_count(start.loop);
   for (int step = 0; step <= count; ++step) {
     const BoundaryEdge& edge = index.edge(start.loop, e);
-    t = nearest_parameter(edge, lo(edge), hi(edge), index.curve_ends(start.loop, e), t, m);
+    t = nearest_parameter(edge, lo(edge), hi(edge), t, m);
     BoundaryPlace here = index.place(start.loop, e, t);
     const bool at_start = std::abs(t - edge.t_start) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
     const bool at_end = std::abs(t - edge.t_end) <= 1e-12 * std::abs(edge.t_end - edge.t_start);
@@ -200,8 +186,8 @@ BoundaryPlace nearest_from_inside(const BoundaryIndex& index, const BoundaryPlac
     // At a tangent join: carry on along the neighbouring edge unless it leads away.
     const int next = at_end ? (e + 1) % count : (e + count - 1) % count;
     const BoundaryEdge& neighbour = index.edge(start.loop, next);
-    const double nt = nearest_parameter(neighbour, lo(neighbour), hi(neighbour), index.curve_ends(start.loop, next),
-                                        at_end ? neighbour.t_start : neighbour.t_end, m);
+    const double nt =
+        nearest_parameter(neighbour, lo(neighbour), hi(neighbour), at_end ? neighbour.t_start : neighbour.t_end, m);
     const BoundaryPlace there = index.place(start.loop, next, nt);
     if (distance(there.point, m) >= distance(here.point, m) * (1 - 1e-14)) return here;
     e = next;
@@ -300,8 +286,7 @@ Equidistant equidistant_within(const BoundaryIndex& index, Vec2 m, const std::ve
   Equidistant result = solve_equidistant(index, m, places, [&](std::size_t k, const BoundaryPlace& p, Vec2 at) {
     const BoundaryEdge& edge = index.edge(p.loop, p.edge);
     const auto [a, b] = windows[k];
-    const std::array<Vec2, 2> ends{evaluate_point(edge.curve, a), evaluate_point(edge.curve, b)};
-    return index.place(p.loop, p.edge, nearest_parameter(edge, a, b, ends, p.t, at));
+    return index.place(p.loop, p.edge, nearest_parameter(edge, a, b, p.t, at));
   });
   // A foot held at a window's end is no nearest point of the boundary.
   for (std::size_t k = 0; k < result.places.size() && result.converged; ++k) {

@@ -33,16 +33,11 @@ class BoundaryIndex {
   const BoundaryEdge& edge(int loop, int e) const { return face_.loops[loop].edges[e]; }
   int edge_count(int loop) const { return static_cast<int>(face_.loops[loop].edges.size()); }
   BoundaryPlace place(int loop, int edge, double t) const;  // fills corner and point
-  // The curve's own points at an edge's lower and upper parameter (the
-  // snapped vertices may lie a file's tolerance off), asked for by every
-  // nearest-point search.
-  const std::array<Vec2, 2>& curve_ends(int loop, int e) const { return curve_ends_[loop][e]; }
 
  private:
   const FaceModel& face_;
   std::vector<std::vector<bool>> corner_;
   std::vector<std::vector<bool>> reflex_;  // corners whose interior angle exceeds pi
-  std::vector<std::vector<std::array<Vec2, 2>>> curve_ends_;
 };
 
 // Nearest point to m on the smooth run of boundary through `start`, found by
