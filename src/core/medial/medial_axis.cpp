@@ -847,20 +847,25 @@ class Builder {
   // diagram kept runs into one of them; the nearest either way may be its
   // neighbour's, and an edge hung on that one folds back. Where the feet
   // have met, or passed each other (the discretised end lies a few chords
-  // off), or no peak between them has an empty disc, the peaks within the
-  // node's radius r along the boundary either way from each foot are the
-  // candidates: an empty disc first, then the nearest to the node. Each
-  // foot's own run then, up to any corner (beside a reflex corner the feet
-  // may lie on either side of it, and the peak on the other side's), but
-  // past reflex corners where the feet have met in one place (the node's
-  // two touches may also meet there, seen from it): a nearly flat one at
-  // the seam of a closed B-spline may hide the peak just beyond.
+  // beyond the true one), the feet of the nearest node back along the
+  // branch whose feet are apart stand in for them: of a lobe's two peaks
+  // the one nearer the end node may lie outside those (fuzz
+  // bspline_10_172). Where no node within r has such feet, or no peak
+  // between them has an empty disc, the peaks within the node's radius r
+  // along the boundary either way from each foot are the candidates: an
+  // empty disc first, then the nearest to the node. Each foot's own run
+  // then, up to any corner (beside a reflex corner the feet may lie on
+  // either side of it, and the peak on the other side's), but past reflex
+  // corners where the feet have met in one place (the node's two touches
+  // may also meet there, seen from it): a nearly flat one at the seam of a
+  // closed B-spline may hide the peak just beyond.
+  static constexpr int kSamples = 64;  // per radius along the boundary
+  static constexpr int kFeetBack = 8;  // nodes back along the branch
   std::optional<MedialVertex> curvature_contact(int node) const {
     const Vec2 p = node_point(node);
     const double r = graph_.vertices[node_vertex_[node]].r;
     const std::vector<BoundaryPlace> touches = touches_at(node, p);
     if (touches.empty() || r <= 0) return std::nullopt;
-    constexpr int kSamples = 64;  // per radius along the boundary
     const double ds = r / kSamples;
     std::vector<BoundaryPlace> feet;
     for (BoundaryPlace foot : touches) {
@@ -869,34 +874,56 @@ class Builder {
     }
     std::optional<MedialVertex> best;
     bool best_empty = false;
-    if (feet.size() == 2 && feet[0].loop == feet[1].loop) {
-      const auto [a, b] = edge_nodes_.at(nodes_[node].edges.front());
-      const Vec2 in = p - node_point(a == node ? b : a);
-      const bool first_right = cross(in, feet[0].point - p) < cross(in, feet[1].point - p);
-      const BoundaryPlace& right = feet[first_right ? 0 : 1];
-      const BoundaryPlace& left = feet[first_right ? 1 : 0];
-      // At most a circle's length of the node's disc along the boundary, to
-      // the first place beside the left foot; a few places more either side
-      // on the feet's own runs (the feet are the discretised end's, a chord
-      // off).
-      constexpr int kMargin = kSamples / 8;
-      const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
-      const Walk ahead = walk(right, 1, ds, reach + kMargin, true);
-      for (std::size_t k = 0; k < ahead.places.size() && k < static_cast<std::size_t>(reach); ++k) {
-        if (distance(ahead.places[k].point, left.point) > ds) continue;
-        std::size_t count = k + 1;
-        while (count < ahead.places.size() && count < k + 1 + kMargin && !ahead.crossed[count]) ++count;
-        peaks_on(join(walk(right, -1, ds, kMargin, false), right, ahead, count), p, ds, best, best_empty);
-        break;
+    int from = node, e = nodes_[node].edges.front();
+    for (int step = 0; step < kFeetBack; ++step) {
+      const auto [a, b] = edge_nodes_.at(e);
+      const int back = a == from ? b : a;
+      const Vec2 q = node_point(from);
+      if (distance(q, p) > r) break;
+      std::vector<BoundaryPlace> apart = feet;
+      if (from != node) {
+        apart.clear();
+        add_distinct(apart, place_of(graph_.edges[e].left, q), kSamePlace * size());
+        add_distinct(apart, place_of(graph_.edges[e].right, q), kSamePlace * size());
       }
-      if (best_empty) return best;
-      best.reset();
+      if (apart.size() == 2 && apart[0].loop == apart[1].loop) {
+        const Vec2 in = q - node_point(back);
+        const bool first_right = cross(in, apart[0].point - q) < cross(in, apart[1].point - q);
+        if (peaks_between(apart[first_right ? 0 : 1], apart[first_right ? 1 : 0], p, ds, best, best_empty)) {
+          if (best_empty) return best;
+          best.reset();
+          break;
+        }
+      }
+      if (nodes_[back].edges.size() != 2) break;
+      from = back;
+      e = nodes_[back].edges[0] == e ? nodes_[back].edges[1] : nodes_[back].edges[0];
     }
     const bool met = feet.size() == 1;
     for (const BoundaryPlace& foot : feet)
       peaks_on(join(walk(foot, -1, ds, kSamples, met), foot, walk(foot, 1, ds, kSamples, met), kSamples), p, ds, best,
                best_empty);
     return best;
+  }
+
+  // The peaks on the boundary from the right foot forwards to the left one,
+  // as candidates for curvature_contact; false if the left foot lies more
+  // than a circle's length of the disc of radius kSamples * ds ahead (the
+  // feet have passed each other). A few places more either side on the
+  // feet's own runs (the feet are the discretised end's, a chord off).
+  bool peaks_between(const BoundaryPlace& right, const BoundaryPlace& left, Vec2 p, double ds,
+                     std::optional<MedialVertex>& best, bool& best_empty) const {
+    constexpr int kMargin = kSamples / 8;
+    const int reach = static_cast<int>(std::ceil(2 * kPi * kSamples));
+    const Walk ahead = walk(right, 1, ds, reach + kMargin, true);
+    for (std::size_t k = 0; k < ahead.places.size() && k < static_cast<std::size_t>(reach); ++k) {
+      if (distance(ahead.places[k].point, left.point) > ds) continue;
+      std::size_t count = k + 1;
+      while (count < ahead.places.size() && count < k + 1 + kMargin && !ahead.crossed[count]) ++count;
+      peaks_on(join(walk(right, -1, ds, kMargin, false), right, ahead, count), p, ds, best, best_empty);
+      return true;
+    }
+    return false;
   }
 
   // The curvature peaks of a run, as candidates for curvature_contact: best
