@@ -1080,7 +1080,17 @@ class Builder {
       edge.points.push_back(nodes_[from].vertex >= 0 ? end_point(nodes_[from].vertex, e) : medial_point(e, a));
     }
     for (int k = 1; k < pieces; ++k) edge.points.push_back(medial_point(e, a + (double(k) / pieces) * (b - a)));
-    edge.points.push_back(nodes_[to].vertex >= 0 ? end_point(nodes_[to].vertex, e) : transition_point(to, e));
+    if (nodes_[to].vertex >= 0) {
+      edge.points.push_back(end_point(nodes_[to].vertex, e));
+      return;
+    }
+    // The exact transition may lie short of points placed before it (the
+    // discretised node lies a little past it): those touch the place beyond
+    // the jump already, and kept they would put the edge's points out of
+    // order (its touches jumping to and fro, fuzz bspline_10_182).
+    const MedialPoint transition = transition_point(to, e);
+    while (edge.points.size() > 1 && dot(edge.points.back().p - transition.p, b - a) > 0) edge.points.pop_back();
+    edge.points.push_back(transition);
   }
 
   // The discretised junction lies a little off the exact one, so the first
