@@ -311,13 +311,18 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
 // the far end of its edge (the junction kept as the discretised point, 0.6
 // off its radius); bspline_10_182, the exact point of a pruned ripple's
 // junction short of the edge point placed before it (the edge turned back
-// there and its touches jumped to and fro). Each
+// there and its touches jumped to and fro). filleted_4_1455: the branch
+// added from the centre of a nearly flat fillet ran to the first kept
+// Voronoi edge its ray crossed, but the crossing test had the sign of the
+// edge's parameter wrong: it passed the edge just beside the centre and
+// joined an edge between two holes across a hole (a junction with no exact
+// point, kept 0.002 off its radius). Each
 // axis must pass the medial checks and the mesh flow its own; every
 // junction touches three distinct places, every convex corner has its
 // flare and no edge turns back.
 TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBack) {
   for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422", "elliptic_10_129",
-                           "elliptic_10_1574", "bspline_10_1797", "bspline_10_182"}) {
+                           "elliptic_10_1574", "bspline_10_1797", "bspline_10_182", "filleted_4_1455"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     const std::optional<MedialAxis> checked = axis_with_its_flow(face);
     if (!checked) continue;
