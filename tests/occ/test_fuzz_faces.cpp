@@ -160,17 +160,20 @@ std::optional<MedialAxis> axis_with_its_flow(const FaceModel& face) {
 // counts are now solved again with those sides kept apart. bspline_10_182
 // and bspline_10_1787 stopped in the decomposition (a block's corners not
 // closing up, pieces of an outline missing each other) on the medial axis
-// defects of the two tests below that name them.
+// defects of the two tests below that name them. bspline_5_587: a k = -1
+// switch so near a branch's curvature-contact end that its split's two
+// radii ended 2e-6 apart on a face 1 500 across, a block of no area between
+// them (now the switch is the contact's, fixed on the boundary there).
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name :
-       {"strip_7_63",     "strip_7_313",     "bspline_8_117",  "elliptic_9_99",  "bspline_1_37",   "elliptic_2_1614",
-        "bspline_2_1947", "bspline_5_357",   "bspline_1_777",  "bspline_1_2",    "bspline_1_1262", "plate_1_1391",
-        "bspline_1_1272", "filleted_4_1700", "bspline_2_792",  "aerofoil_3_201", "aerofoil_3_288", "plate_3_686",
-        "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",  "bspline_1_977",  "bspline_1_1252",
-        "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",  "bspline_1_1157", "bspline_1_112",
-        "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226", "bspline_2_152",  "filleted_2_975",
-        "bspline_2_1477", "cascade_2_381",   "cascade_2_387",  "bspline_3_422",  "aerofoil_3_217", "filleted_7_740",
-        "filleted_8_655", "plate_8_891",     "bspline_10_182", "bspline_10_1787"}) {
+       {"strip_7_63",     "strip_7_313",     "bspline_8_117",  "elliptic_9_99",   "bspline_1_37",   "elliptic_2_1614",
+        "bspline_2_1947", "bspline_5_357",   "bspline_1_777",  "bspline_1_2",     "bspline_1_1262", "plate_1_1391",
+        "bspline_1_1272", "filleted_4_1700", "bspline_2_792",  "aerofoil_3_201",  "aerofoil_3_288", "plate_3_686",
+        "plate_5_1206",   "aerofoil_3_213",  "aerofoil_1_4",   "aerofoil_1_85",   "bspline_1_977",  "bspline_1_1252",
+        "bspline_1_1257", "aerofoil_1_68",   "aerofoil_1_116", "bspline_1_147",   "bspline_1_1157", "bspline_1_112",
+        "bspline_1_1977", "elliptic_1_1724", "strip_2_268",    "aerofoil_2_226",  "bspline_2_152",  "filleted_2_975",
+        "bspline_2_1477", "cascade_2_381",   "cascade_2_387",  "bspline_3_422",   "aerofoil_3_217", "filleted_7_740",
+        "filleted_8_655", "plate_8_891",     "bspline_10_182", "bspline_10_1787", "bspline_5_587"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
