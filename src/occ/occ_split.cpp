@@ -5,6 +5,7 @@
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
@@ -283,16 +284,30 @@ std::vector<TopoDS_Face> split_face(const TopoDS_Face& face, const Frame& frame,
     if (tools.IsEmpty()) {
       blocks.push_back(face);  // the splitter refuses to run without tools
     } else {
+      // OCC's boolean operations work to an absolute precision (1e-7): a
+      // face much smaller than a unit is cut at unit size and scaled back.
+      const double scale = std::max(1.0, 1.0 / face_size(face));
+      gp_Trsf up, down;
+      up.SetScale(gp_Pnt(0, 0, 0), scale);
+      down.SetScale(gp_Pnt(0, 0, 0), 1.0 / scale);
+      const auto scaled = [](const TopoDS_Shape& shape, const gp_Trsf& how) {
+        return BRepBuilderAPI_Transform(shape, how, /*copy=*/true).Shape();
+      };
+      TopTools_ListOfShape big_arguments, big_tools;
+      if (scale > 1.0) {
+        big_arguments.Append(scaled(face, up));
+        for (const TopoDS_Shape& tool : tools) big_tools.Append(scaled(tool, up));
+      }
       BRepAlgoAPI_Splitter splitter;
-      splitter.SetArguments(arguments);
-      splitter.SetTools(tools);
+      splitter.SetArguments(scale > 1.0 ? big_arguments : arguments);
+      splitter.SetTools(scale > 1.0 ? big_tools : tools);
       splitter.Build();
       if (splitter.HasErrors()) throw InputError("splitting into blocks failed: " + splitter_errors(splitter));
       // A split that does not separate the face (an annulus cut once) comes
       // back as an INTERNAL edge in a wire of its own inside the one face, the
       // loops it touches cut at its ends: valid, and it adds no area.
       for (TopExp_Explorer it(splitter.Shape(), TopAbs_FACE); it.More(); it.Next()) {
-        blocks.push_back(TopoDS::Face(it.Current()));
+        blocks.push_back(TopoDS::Face(scale > 1.0 ? scaled(it.Current(), down) : it.Current()));
       }
     }
     const Area face_area = area_of(face);
