@@ -375,7 +375,7 @@ class Builder {
         const Vec2 a = node_point(ends.first), b = node_point(ends.second);
         const double denominator = cross(away, b - a);
         if (std::abs(denominator) < 1e-300) continue;
-        const double u = cross(away, v.p - a) / denominator;  // along a -> b
+        const double u = cross(away, v.p - a) / denominator;   // along a -> b
         const double s = cross(a - v.p, b - a) / denominator;  // along the ray
         if (u < 0 || u > 1 || s <= 0 || s >= nearest) continue;
         nearest = s;
