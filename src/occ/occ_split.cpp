@@ -271,43 +271,40 @@ std::vector<TopoDS_Edge> split_edges_3d(const Frame& frame, const Polylines& pol
 std::vector<TopoDS_Face> split_face(const TopoDS_Face& face, const Frame& frame, const Polylines& polylines) {
   std::vector<TopoDS_Face> blocks;
   try {
-    TopTools_ListOfShape arguments, tools;
-    arguments.Append(face);
+    const double size = face_size(face);
     // The boundary model keeps a B-spline it recognises as an arc as that
     // exact arc, within 1e-5 of the face size of OCC's curve: split ends on
     // it are that far from OCC's edge, or as far as OCC's own tolerance says.
-    const double snap = std::max(2e-5 * face_size(face), edge_tolerance(face));
+    const double snap = std::max(2e-5 * size, edge_tolerance(face));
     std::vector<std::vector<bool>> on_boundary;
     const Polylines splits = snap_ends(face, frame, polylines, snap, on_boundary);
     check_inside(face, frame, splits, on_boundary, snap);
-    for (const TopoDS_Edge& edge : split_edges_3d(frame, splits)) tools.Append(edge);
-    if (tools.IsEmpty()) {
+    const std::vector<TopoDS_Edge> edges = split_edges_3d(frame, splits);
+    if (edges.empty()) {
       blocks.push_back(face);  // the splitter refuses to run without tools
     } else {
       // OCC's boolean operations work to an absolute precision (1e-7): a
       // face much smaller than a unit is cut at unit size and scaled back.
-      const double scale = std::max(1.0, 1.0 / face_size(face));
+      const double scale = std::max(1.0, 1.0 / size);
       gp_Trsf up, down;
       up.SetScale(gp_Pnt(0, 0, 0), scale);
       down.SetScale(gp_Pnt(0, 0, 0), 1.0 / scale);
-      const auto scaled = [](const TopoDS_Shape& shape, const gp_Trsf& how) {
-        return BRepBuilderAPI_Transform(shape, how, /*copy=*/true).Shape();
+      const auto scaled = [&](const TopoDS_Shape& shape, const gp_Trsf& how) {
+        return scale > 1.0 ? BRepBuilderAPI_Transform(shape, how, /*copy=*/true).Shape() : shape;
       };
-      TopTools_ListOfShape big_arguments, big_tools;
-      if (scale > 1.0) {
-        big_arguments.Append(scaled(face, up));
-        for (const TopoDS_Shape& tool : tools) big_tools.Append(scaled(tool, up));
-      }
+      TopTools_ListOfShape arguments, tools;
+      arguments.Append(scaled(face, up));
+      for (const TopoDS_Edge& edge : edges) tools.Append(scaled(edge, up));
       BRepAlgoAPI_Splitter splitter;
-      splitter.SetArguments(scale > 1.0 ? big_arguments : arguments);
-      splitter.SetTools(scale > 1.0 ? big_tools : tools);
+      splitter.SetArguments(arguments);
+      splitter.SetTools(tools);
       splitter.Build();
       if (splitter.HasErrors()) throw InputError("splitting into blocks failed: " + splitter_errors(splitter));
       // A split that does not separate the face (an annulus cut once) comes
       // back as an INTERNAL edge in a wire of its own inside the one face, the
       // loops it touches cut at its ends: valid, and it adds no area.
       for (TopExp_Explorer it(splitter.Shape(), TopAbs_FACE); it.More(); it.Next()) {
-        blocks.push_back(TopoDS::Face(scale > 1.0 ? scaled(it.Current(), down) : it.Current()));
+        blocks.push_back(TopoDS::Face(scaled(it.Current(), down)));
       }
     }
     const Area face_area = area_of(face);

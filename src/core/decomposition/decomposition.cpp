@@ -516,13 +516,12 @@ class Decomposer {
         // A switch so near the end of a branch into a contact that its two
         // touches are one place: its split, the two radii, would enclose a
         // block of no area. It is the contact's own.
-        if (loc.edge >= 0) {
+        const int v = loc.s < 0.5 * last ? axis_.edges[s.edge].from : axis_.edges[s.edge].to;
+        if (loc.edge >= 0 && v >= 0 && contact_vertex(axis_.vertices[v])) {
           const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(s.edge) - 2);
           const MedialPoint& near = axis_.edges[s.edge].points[loc.s - i < 0.5 ? i : i + 1];
-          const bool one_place = distance(nearest_on_run(index_, near.left, s.p).point,
-                                          nearest_on_run(index_, near.right, s.p).point) <= sliver_length();
-          const int v = loc.s < 0.5 * last ? axis_.edges[s.edge].from : axis_.edges[s.edge].to;
-          if (one_place && v >= 0 && contact_vertex(axis_.vertices[v])) {
+          if (distance(nearest_on_run(index_, near.left, s.p).point, nearest_on_run(index_, near.right, s.p).point) <=
+              sliver_length()) {
             loc = Location{};
             loc.vertex = rep_[v];
           }
