@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sstream>
+#include <string>
 
 #include "medial/medial_axis.hpp"
 #include "singularity/mesh_flow.hpp"
@@ -27,21 +29,89 @@ void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
   }
 }
 
-// Medial axis, mesh flow and decomposition of one face, each timed into stages.
-Decomposition decompose_face(const FaceModel& face, const PipelineOptions& options, StageSeconds& stages) {
+// The merging settings to fall back on, in turn, when a face's blocks with
+// the merging asked for cannot be meshed: merging is a choice for fewer
+// irregular nodes, never a must, and a merged group can get a block its
+// geometry does not fit (a polygon wrapped round an aerofoil's nose or a
+// blade's trailing edge, whose first placement folds beyond untangling).
+// Less merging first, then none.
+std::vector<PipelineOptions> merging_fallbacks(const PipelineOptions& options) {
+  std::vector<PipelineOptions> fallbacks;
+  if (!options.merge) return fallbacks;
+  PipelineOptions less = options;
+  for (int step = 0; step < 2; ++step) {
+    if (options.tolerance.mesh_size > 0.0) {
+      less.tolerance.mesh_size *= 0.5;
+    } else if (less.tolerance.radius_factor > 0.5) {
+      less.tolerance.radius_factor = 0.5;
+    } else if (less.tolerance.radius_factor > 0.25) {
+      less.tolerance.radius_factor = 0.25;
+    } else {
+      break;
+    }
+    fallbacks.push_back(less);
+  }
+  less.merge = false;
+  fallbacks.push_back(less);
+  return fallbacks;
+}
+
+std::string merging_text(const PipelineOptions& options) {
+  if (!options.merge) return "no merging";
+  std::ostringstream text;
+  if (options.tolerance.mesh_size > 0.0) {
+    text << "merging within " << options.tolerance.mesh_size;
+  } else {
+    text << "merging factor " << options.tolerance.radius_factor;
+  }
+  return text.str();
+}
+
+struct FlowOfFace {
+  MedialAxis axis;
+  MeshFlow flow;
+};
+
+FlowOfFace flow_of_face(const FaceModel& face, StageSeconds& stages) {
   auto t = Clock::now();
-  const MedialAxis axis = compute_medial_axis(face);
+  FlowOfFace result{compute_medial_axis(face), {}};
   add_stage(stages, "medial_axis", seconds_since(t));
   t = Clock::now();
-  const MeshFlow flow = compute_mesh_flow(face, axis);
+  result.flow = compute_mesh_flow(face, result.axis);
   add_stage(stages, "singularities", seconds_since(t));
-  t = Clock::now();
+  return result;
+}
+
+Decomposition decompose_flow(const FaceModel& face, const FlowOfFace& f, const PipelineOptions& options,
+                             StageSeconds& stages) {
+  const auto t = Clock::now();
   DecompositionOptions decomposition;
   decomposition.merge = options.merge;
   decomposition.tolerance = options.tolerance;
-  Decomposition result = decompose(face, axis, flow, decomposition);
+  Decomposition result = decompose(face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
+}
+
+// Runs `attempt` with the options asked for and, while it fails a
+// self-check, with each merging fallback; the first failure is the one
+// thrown when all fail. Returns the note to hand on (empty if none needed).
+template <typename Attempt>
+std::string with_merging_fallbacks(const PipelineOptions& options, Attempt attempt) {
+  try {
+    attempt(options);
+    return {};
+  } catch (const SelfCheckError& first) {
+    for (const PipelineOptions& fallback : merging_fallbacks(options)) {
+      try {
+        attempt(fallback);
+        return "with " + merging_text(options) + " a stage failed its self-check (" + first.what() + "); meshed with " +
+               merging_text(fallback);
+      } catch (const SelfCheckError&) {
+      }
+    }
+    throw;
+  }
 }
 
 }  // namespace
@@ -50,9 +120,13 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   const auto start = Clock::now();
   MeshedFace result;
   StageSeconds stages;
-  result.decomposition = decompose_face(face, options, stages);
-  result.blocks = mesh_blocks(face, result.decomposition, options.meshing);
-  stages.insert(stages.end(), result.blocks.stage_seconds.begin(), result.blocks.stage_seconds.end());
+  const FlowOfFace flow = flow_of_face(face, stages);
+  const std::string note = with_merging_fallbacks(options, [&](const PipelineOptions& o) {
+    result.decomposition = decompose_flow(face, flow, o, stages);
+    result.blocks = mesh_blocks(face, result.decomposition, o.meshing);
+  });
+  if (!note.empty()) result.blocks.notes.push_back(note);
+  for (const auto& [name, seconds] : result.blocks.stage_seconds) add_stage(stages, name, seconds);
   const auto t = Clock::now();
   result.quality = measure_quality(result.blocks.mesh);
   stages.emplace_back("quality", seconds_since(t));
@@ -66,9 +140,18 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   const auto start = Clock::now();
   MeshedFaces result;
   StageSeconds stages;
+  std::vector<FlowOfFace> flows;
+  for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
   std::vector<Decomposition> decompositions;
-  for (const FaceModel& face : faces) decompositions.push_back(decompose_face(face, options, stages));
-  FaceSetBlockMesh blocks = mesh_blocks_together(faces, decompositions, options.meshing);
+  FaceSetBlockMesh blocks;
+  const std::string note = with_merging_fallbacks(options, [&](const PipelineOptions& o) {
+    decompositions.clear();
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      decompositions.push_back(decompose_flow(faces[f], flows[f], o, stages));
+    blocks = mesh_blocks_together(faces, decompositions, o.meshing);
+  });
+  if (!note.empty())
+    for (BlockMesh& face : blocks.faces) face.notes.push_back(note);
   std::vector<const QuadMesh*> meshes;
   std::vector<QualityReport> reports;
   for (std::size_t f = 0; f < faces.size(); ++f) {

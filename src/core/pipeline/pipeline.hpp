@@ -22,7 +22,9 @@ struct MeshedFace {
 };
 
 // Throws InputError for bad options, SelfCheckError when a stage's result
-// fails its check.
+// fails its check with the merging asked for and with each lesser merging
+// tried after it (factor 0.5, 0.25, none; a note in blocks.notes says when
+// a lesser one was used).
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // Several faces meshed together: the pieces of boundary they share in 3-D
