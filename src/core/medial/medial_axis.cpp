@@ -69,6 +69,7 @@ class Builder {
     join_isolated_finite_contacts();
     keep_connected_axis();
     classify_nodes();
+    separate_coincident_junctions();
     repair_flipped_junction_pairs();
     trace_chains();
     return std::move(axis_);
@@ -540,6 +541,21 @@ class Builder {
   // nearer to them, and edges would meet a junction that does not touch
   // their places), then closest to where the Voronoi diagram put it.
   void make_junction(int node, Vec2 p) {
+    std::optional<MedialVertex> v = exact_junction(node, p, nullptr);
+    if (!v) {  // no exact solution: keep the discretised one
+      v = MedialVertex{};
+      v->kind = MedialVertexKind::Junction;
+      v->p = p;
+      v->touches = junction_candidates(node, p);
+      v->r = v->touches.empty() ? 0.0 : distance(p, v->touches.front().point);
+    }
+    nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
+    axis_.vertices.push_back(*v);
+  }
+
+  // The exact junction of a node, or, given `avoid`, another one than that
+  // (not at avoid's point); none if there is none.
+  std::optional<MedialVertex> exact_junction(int node, Vec2 p, const MedialVertex* avoid) const {
     MedialVertex v;
     v.kind = MedialVertexKind::Junction;
     v.p = p;
@@ -563,6 +579,7 @@ class Builder {
         return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
       };
       if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) return;
+      if (avoid && distance(exact.p, avoid->p) <= 1e-9 * size()) return;
       const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
       if (!(score < best)) return;
       std::vector<BoundaryPlace> touches;
@@ -605,12 +622,33 @@ class Builder {
         }
       }
     }
-    if (v.touches.empty()) {  // no exact solution: keep the discretised one
-      v.touches = candidates;
-      v.r = candidates.empty() ? 0.0 : distance(p, candidates.front().point);
+    if (v.touches.empty()) return std::nullopt;
+    return v;
+  }
+
+  // Where five places lie almost on one circle, two neighbouring junction
+  // nodes can both take the one exact junction that touches most of their
+  // own edges, leaving two vertices at one point with the same touches and
+  // none for the pairing between them (filleted_14_1695, filleted_9_1070:
+  // an edge beside them then touched one place at one end and another at
+  // the other, and a block outline ran clockwise or missed itself). The
+  // node whose own edges that junction touches less takes the best other
+  // junction, if there is one.
+  void separate_coincident_junctions() {
+    for (const auto& [s, ends] : edge_nodes_) {
+      const auto [a, b] = ends;
+      if (!junction_node(a) || !junction_node(b)) continue;
+      const MedialVertex &va = axis_.vertices[nodes_[a].vertex], &vb = axis_.vertices[nodes_[b].vertex];
+      if (distance(va.p, vb.p) > 1e-9 * size()) continue;
+      const auto own_touched = [&](int node) {
+        return std::count_if(nodes_[node].edges.begin(), nodes_[node].edges.end(),
+                             [&](int e) { return touches_edge(va.p, va.r, e); });
+      };
+      const int redo = own_touched(a) < own_touched(b) ? a : b;
+      const MedialVertex& keep = redo == a ? vb : va;
+      if (const std::optional<MedialVertex> other = exact_junction(redo, node_point(redo), &keep))
+        axis_.vertices[nodes_[redo].vertex] = *other;
     }
-    nodes_[node].vertex = static_cast<int>(axis_.vertices.size());
-    axis_.vertices.push_back(v);
   }
 
   // The segment sites around a junction node, each as the place of its chord
