@@ -164,8 +164,11 @@ std::optional<MedialAxis> axis_with_its_flow(const FaceModel& face) {
 // switch so near a branch's curvature-contact end that its split's two
 // radii ended 2e-6 apart on a face 1 500 across, a block of no area between
 // them (now the switch is the contact's, fixed on the boundary there).
-// filleted_14_1695 and filleted_9_1070 stopped on the medial defect of the
-// test below that names them.
+// plate_5_1451: a singularity fixed on an edge's last segment before a
+// junction touching two slots and the outline took its radius to the slot
+// the junction touches, not the one the edge runs along (a block outline
+// missed itself by 0.15); filleted_14_1695 and filleted_9_1070 stopped on
+// the medial defect of the test below that names them.
 TEST(FuzzFaces, EachGetsAValidMesh) {
   for (const char* name :
        {"strip_7_63",       "strip_7_313",     "bspline_8_117",  "elliptic_9_99",   "bspline_1_37",   "elliptic_2_1614",

@@ -1026,9 +1026,19 @@ class Decomposer {
       if (std::abs(step) > 0.25 * static_cast<double>(face_.loops[own.left.loop].edges.size())) return true;
       return (signed_step(m.right, m.left) > 0) == (step > 0);
     };
+    // An end point carries its vertex's touches, which at a junction need not
+    // continue the edge's own (plate_5_1451: a junction touching two slots
+    // and the outline, where a singularity fixed beside it got a radius to
+    // the slot across): the runs there are those the edge leaves along.
+    const int n = point_count(e);
+    const auto runs_at = [&](int j) -> const MedialPoint& {
+      if (n < 3 || (j != 0 && j != n - 1)) return pts[j];
+      return j == 0 ? pts[leaving_point(e, true)] : pts[n - 1 - leaving_point(e, false)];
+    };
     for (const int j : order) {
-      const MedialPoint point{p, r, nearest_on_run(index_, pts[j].left, p), nearest_on_run(index_, pts[j].right, p)};
-      if (apart(point) && in_order(point, pts[j])) return point;
+      const MedialPoint& own = runs_at(j);
+      const MedialPoint point{p, r, nearest_on_run(index_, own.left, p), nearest_on_run(index_, own.right, p)};
+      if (apart(point) && in_order(point, own)) return point;
     }
     for (const int j : order) {
       if (apart(pts[j])) return pts[j];
