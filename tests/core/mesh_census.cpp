@@ -36,12 +36,11 @@ int main(int argc, char** argv) {
       PipelineOptions options;
       options.meshing.size = test::random_meshing_size(face, number);
       options.meshing.order = order;
-      Decomposition decomposition;
       try {
-        const MedialAxis axis = compute_medial_axis(face);
-        const MeshFlow flow = compute_mesh_flow(face, axis);
-        decomposition = decompose(face, axis, flow, DecompositionOptions{});
         if (number == picture && order == 1) {
+          const MedialAxis axis = compute_medial_axis(face);
+          const MeshFlow flow = compute_mesh_flow(face, axis);
+          const Decomposition decomposition = decompose(face, axis, flow, DecompositionOptions{});
           SvgCanvas canvas(bounding_box(face), 900);
           draw_decomposition(canvas, face, axis, decomposition);
           for (const Block& block : decomposition.blocks) {
@@ -51,24 +50,32 @@ int main(int argc, char** argv) {
               canvas.text(corner.p + (c - corner.p) * 0.15, std::to_string(corner.type), 11, "fill:#000");
           }
           canvas.save("census_" + std::to_string(number) + ".svg");
-          const MeshedFace m = mesh_face(face, options);
+        }
+        // The pipeline's own entry point, with its fallbacks (less merging).
+        const MeshedFace m = mesh_face(face, options);
+        if (number == picture && order == 1) {
           SvgCanvas mesh_canvas(bounding_box(face), 900);
           draw_quad_mesh(mesh_canvas, face, m.decomposition, m.blocks.mesh, m.quality);
           mesh_canvas.save("census_" + std::to_string(number) + "_mesh.svg");
           std::cout << "min scaled Jacobian " << m.quality.min_scaled_jacobian << "\n";
         }
-        const BlockMesh blocks = mesh_blocks(face, decomposition, options.meshing);
-        if (order == 1) worst.emplace(measure_quality(blocks.mesh).min_scaled_jacobian, number);
+        if (order == 1) worst.emplace(m.quality.min_scaled_jacobian, number);
       } catch (const std::exception& e) {
         std::string what = e.what();
         if (verbose) {
           std::cout << number << " order " << order << ": " << what << "\n";
-          for (std::size_t b = 0; b < decomposition.blocks.size(); ++b) {
-            const Block& block = decomposition.blocks[b];
-            std::cout << "  block " << b << (block.kind == BlockKind::Polygon ? " polygon" : " submap") << " k "
-                      << (block.singularity >= 0 ? decomposition.singularities[block.singularity].k : 0) << " corners";
-            for (const auto& c : block.corners) std::cout << " " << c.type;
-            std::cout << "\n";
+          try {
+            const MedialAxis axis = compute_medial_axis(face);
+            const Decomposition decomposition = decompose(face, axis, compute_mesh_flow(face, axis), {});
+            for (std::size_t b = 0; b < decomposition.blocks.size(); ++b) {
+              const Block& block = decomposition.blocks[b];
+              std::cout << "  block " << b << (block.kind == BlockKind::Polygon ? " polygon" : " submap") << " k "
+                        << (block.singularity >= 0 ? decomposition.singularities[block.singularity].k : 0)
+                        << " corners";
+              for (const auto& c : block.corners) std::cout << " " << c.type;
+              std::cout << "\n";
+            }
+          } catch (const std::exception&) {
           }
         }
         const auto colon = what.find(face.name);
