@@ -54,6 +54,31 @@ TEST(Decomposition, SquarePlateWithHoleGetsFourPentagonsSplitAtTheSideMiddles) {
   }
 }
 
+// A T-shape has no singularity: one submapped block with two reflex
+// corners. Asked to split at every concave corner, each reflex corner gets
+// a split along both arms of its cross (the two arms across the stem's top
+// are one split, corner to corner), and the T becomes four mapped blocks:
+// four corners each, none reflex.
+TEST(Decomposition, SplitsAtEveryConcaveCornerWhenAsked) {
+  const FaceModel f = face({polygon({{0, 0}, {1, 0}, {1, 2}, {2.5, 2}, {2.5, 3}, {-1.5, 3}, {-1.5, 2}, {0, 2}})});
+  const MedialAxis axis = compute_medial_axis(f);
+  const MeshFlow flow = compute_mesh_flow(f, axis);
+  const Decomposition plain = decompose(f, axis, flow, {});
+  EXPECT_TRUE(plain.splits.empty());
+  DecompositionOptions options;
+  options.split_concave_corners = true;
+  const Decomposition split = decompose(f, axis, flow, options);
+  EXPECT_TRUE(test::decomposition_problems(f, flow, split).empty());
+  EXPECT_EQ(std::count_if(split.splits.begin(), split.splits.end(),
+                          [](const Split& s) { return s.reason == SplitReason::ConcaveCorner; }),
+            3);
+  EXPECT_EQ(split.blocks.size(), 4u);
+  for (const Block& b : split.blocks) {
+    EXPECT_EQ(b.corners.size(), 4u);
+    EXPECT_TRUE(std::none_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 3; }));
+  }
+}
+
 TEST(Decomposition, SlotWithRoundEndsIsTwoTwoSidedBlocks) {
   const FaceModel f = face({{test::line({-1, -0.5}, {1, -0.5}), test::arc({1, -0.5}, {1, 0.5}, 0.5),
                              test::line({1, 0.5}, {-1, 0.5}), test::arc({-1, 0.5}, {-1, -0.5}, 0.5)}});

@@ -2,8 +2,10 @@
 // every shared and real CAD face (all checks), and the mesh command.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "mesh_checks.hpp"
 #include "occ/occ_reader.hpp"
@@ -83,6 +85,28 @@ TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
   }
   EXPECT_EQ(reference_stops, 0);  // of 18
   EXPECT_EQ(real_stops, 0);       // of 11
+}
+
+// Spur gears round a bore with a keyway (tests/data/make_gears.py): each is
+// one ring that submaps with its teeth and the keyway as notches, and no
+// singularity (each tooth's two convex and two reflex corners cancel). The
+// ring's first placement folds near the keyway beyond untangling, with or
+// without merging; split along every concave corner's cross, the gear is
+// blocks of few reflex corners each and meshes, the result saying so.
+TEST(MeshReference, KeyedGearsMeshWithSplitsAtEveryConcaveCorner) {
+  for (const char* name : {"gear_18_keyed", "gear_30_keyed"}) {
+    std::ifstream in(std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/" + name + ".brep");
+    std::stringstream text;
+    text << in.rdbuf();
+    const FaceModel face = face_model_from_brep_string(text.str(), name);
+    const MeshedFace m = meshed(face);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size).empty()) << name;
+    EXPECT_EQ(m.quality.inverted, 0) << name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.3) << name;
+    EXPECT_TRUE(std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(), [](const std::string& note) {
+      return note.find("splits at every concave corner") != std::string::npos;
+    })) << name;
+  }
 }
 
 TEST(MeshReference, QuadraticElementsPutMidSideNodesOnTheCurves) {

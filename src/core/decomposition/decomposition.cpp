@@ -446,6 +446,10 @@ class Decomposer {
           if (floating(static_cast<int>(u)) && boundary_fixable(static_cast<int>(u))) fix(static_cast<int>(u));
         }
       }
+      // Splits along every arm of every concave corner, when asked, come
+      // first: the process then resolves singularities with what is left.
+      if (options_.split_concave_corners)
+        for (const ConcavePoint& cp : concave_) cut_concave(cp);
       resolve_neighbours();
       fix_unresolved();
       std::vector<Outline> outlines;

@@ -18,6 +18,10 @@ namespace mm {
 struct DecompositionOptions {
   bool merge = true;         // merge close singularities first (sections 4.3 and 4.4)
   MergeTolerance tolerance;  // how close is close
+  // Split along every arm of every concave corner's cross, not only where a
+  // singularity needs it: smaller blocks, fewer reflex corners in any one
+  // (for regions whose submapped placement folds).
+  bool split_concave_corners = false;
 };
 
 enum class SplitReason {

@@ -29,17 +29,19 @@ void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
   }
 }
 
-// The merging settings to fall back on, in turn, when a face's blocks with
-// the merging asked for cannot be meshed: merging is a choice for fewer
+// The settings to fall back on, in turn, when a face's blocks with the
+// settings asked for cannot be meshed. Merging is a choice for fewer
 // irregular nodes, never a must, and a merged group can get a block its
 // geometry does not fit (a polygon wrapped round an aerofoil's nose or a
-// blade's trailing edge, whose first placement folds beyond untangling).
-// Less merging first, then none.
-std::vector<PipelineOptions> merging_fallbacks(const PipelineOptions& options) {
-  std::vector<PipelineOptions> fallbacks;
-  if (!options.merge) return fallbacks;
+// blade's trailing edge, whose first placement folds beyond untangling):
+// less merging first, then none. Last, splits along every concave corner's
+// cross, with the merging asked for and with none: a big submapped region
+// with many reflex corners (a gear's ring with a keyway) whose placement
+// folds becomes blocks with few.
+std::vector<PipelineOptions> fallbacks(const PipelineOptions& options) {
+  std::vector<PipelineOptions> list;
   PipelineOptions less = options;
-  for (int step = 0; step < 2; ++step) {
+  for (int step = 0; options.merge && step < 2; ++step) {
     if (options.tolerance.mesh_size > 0.0) {
       less.tolerance.mesh_size *= 0.5;
     } else if (less.tolerance.radius_factor > 0.5) {
@@ -49,21 +51,31 @@ std::vector<PipelineOptions> merging_fallbacks(const PipelineOptions& options) {
     } else {
       break;
     }
-    fallbacks.push_back(less);
+    list.push_back(less);
   }
   less.merge = false;
-  fallbacks.push_back(less);
-  return fallbacks;
+  if (options.merge) list.push_back(less);
+  if (options.split_concave_corners) return list;
+  PipelineOptions split = options;
+  split.split_concave_corners = true;
+  list.push_back(split);
+  if (options.merge) {
+    split.merge = false;
+    list.push_back(split);
+  }
+  return list;
 }
 
-std::string merging_text(const PipelineOptions& options) {
-  if (!options.merge) return "no merging";
+std::string settings_text(const PipelineOptions& options) {
   std::ostringstream text;
-  if (options.tolerance.mesh_size > 0.0) {
+  if (!options.merge) {
+    text << "no merging";
+  } else if (options.tolerance.mesh_size > 0.0) {
     text << "merging within " << options.tolerance.mesh_size;
   } else {
     text << "merging factor " << options.tolerance.radius_factor;
   }
+  if (options.split_concave_corners) text << " and splits at every concave corner";
   return text.str();
 }
 
@@ -88,25 +100,26 @@ Decomposition decompose_flow(const FaceModel& face, const FlowOfFace& f, const P
   DecompositionOptions decomposition;
   decomposition.merge = options.merge;
   decomposition.tolerance = options.tolerance;
+  decomposition.split_concave_corners = options.split_concave_corners;
   Decomposition result = decompose(face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
 }
 
 // Runs `attempt` with the options asked for and, while it fails a
-// self-check, with each merging fallback; the first failure is the one
-// thrown when all fail. Returns the note to hand on (empty if none needed).
+// self-check, with each fallback; the first failure is the one thrown when
+// all fail. Returns the note to hand on (empty if none was needed).
 template <typename Attempt>
-std::string with_merging_fallbacks(const PipelineOptions& options, Attempt attempt) {
+std::string with_fallbacks(const PipelineOptions& options, Attempt attempt) {
   try {
     attempt(options);
     return {};
   } catch (const SelfCheckError& first) {
-    for (const PipelineOptions& fallback : merging_fallbacks(options)) {
+    for (const PipelineOptions& fallback : fallbacks(options)) {
       try {
         attempt(fallback);
-        return "with " + merging_text(options) + " a stage failed its self-check (" + first.what() + "); meshed with " +
-               merging_text(fallback);
+        return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
+               "); meshed with " + settings_text(fallback);
       } catch (const SelfCheckError&) {
       }
     }
@@ -121,7 +134,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   MeshedFace result;
   StageSeconds stages;
   const FlowOfFace flow = flow_of_face(face, stages);
-  const std::string note = with_merging_fallbacks(options, [&](const PipelineOptions& o) {
+  const std::string note = with_fallbacks(options, [&](const PipelineOptions& o) {
     result.decomposition = decompose_flow(face, flow, o, stages);
     result.blocks = mesh_blocks(face, result.decomposition, o.meshing);
   });
@@ -144,7 +157,7 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
   std::vector<Decomposition> decompositions;
   FaceSetBlockMesh blocks;
-  const std::string note = with_merging_fallbacks(options, [&](const PipelineOptions& o) {
+  const std::string note = with_fallbacks(options, [&](const PipelineOptions& o) {
     decompositions.clear();
     for (std::size_t f = 0; f < faces.size(); ++f)
       decompositions.push_back(decompose_flow(faces[f], flows[f], o, stages));

@@ -12,7 +12,8 @@ namespace mm {
 struct PipelineOptions {
   MeshingOptions meshing;
   bool merge = true;
-  MergeTolerance tolerance;  // factor 0.75 of the medial radius unless told otherwise
+  MergeTolerance tolerance;            // factor 0.75 of the medial radius unless told otherwise
+  bool split_concave_corners = false;  // DecompositionOptions::split_concave_corners
 };
 
 struct MeshedFace {
@@ -22,9 +23,9 @@ struct MeshedFace {
 };
 
 // Throws InputError for bad options, SelfCheckError when a stage's result
-// fails its check with the merging asked for and with each lesser merging
-// tried after it (factor 0.5, 0.25, none; a note in blocks.notes says when
-// a lesser one was used).
+// fails its check with the options asked for and with each fallback tried
+// after them: less merging (factor 0.5, 0.25, none), then splits at every
+// concave corner (a note in blocks.notes says when a fallback was used).
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // Several faces meshed together: the pieces of boundary they share in 3-D
