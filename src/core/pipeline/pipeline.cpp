@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include "medial/medial_axis.hpp"
+#include "singularity/merge.hpp"
 #include "singularity/mesh_flow.hpp"
 
 namespace mm {
@@ -106,16 +108,40 @@ Decomposition decompose_flow(const FaceModel& face, const FlowOfFace& f, const P
   return result;
 }
 
+// What the decomposition sees of the settings: whether it splits at every
+// concave corner, and on each face the groups of more than one singularity
+// that merging makes. Two settings alike in this decompose alike.
+using DecompositionKey = std::pair<bool, std::vector<std::vector<std::vector<int>>>>;
+DecompositionKey decomposition_key(const std::vector<const FlowOfFace*>& flows, const PipelineOptions& options) {
+  DecompositionKey key{options.split_concave_corners, {}};
+  for (const FlowOfFace* f : flows) {
+    key.second.emplace_back();
+    if (!options.merge) continue;
+    for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.tolerance))
+      if (g.members.size() > 1) key.second.back().push_back(g.members);
+  }
+  return key;
+}
+
 // Runs `attempt` with the options asked for and, while it fails a
-// self-check, with each fallback; the first failure is the one thrown when
-// all fail. Returns the note to hand on (empty if none was needed).
+// self-check, with each fallback that decomposes otherwise than those
+// tried (a face with nothing to merge skips the merging fallbacks); the
+// first failure is the one thrown when all fail. Returns the note to hand
+// on (empty if none was needed); the time the failed attempts took is
+// added to `stages` as "failed_attempts".
 template <typename Attempt>
-std::string with_fallbacks(const PipelineOptions& options, Attempt attempt) {
+std::string with_fallbacks(const PipelineOptions& options, const std::vector<const FlowOfFace*>& flows,
+                           StageSeconds& stages, Attempt attempt) {
+  auto start = Clock::now();
   try {
     attempt(options);
     return {};
   } catch (const SelfCheckError& first) {
+    std::set<DecompositionKey> tried{decomposition_key(flows, options)};
     for (const PipelineOptions& fallback : fallbacks(options)) {
+      if (!tried.insert(decomposition_key(flows, fallback)).second) continue;
+      add_stage(stages, "failed_attempts", seconds_since(start));
+      start = Clock::now();
       try {
         attempt(fallback);
         return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
@@ -123,6 +149,7 @@ std::string with_fallbacks(const PipelineOptions& options, Attempt attempt) {
       } catch (const SelfCheckError&) {
       }
     }
+    add_stage(stages, "failed_attempts", seconds_since(start));
     throw;
   }
 }
@@ -134,11 +161,15 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   MeshedFace result;
   StageSeconds stages;
   const FlowOfFace flow = flow_of_face(face, stages);
-  const std::string note = with_fallbacks(options, [&](const PipelineOptions& o) {
-    result.decomposition = decompose_flow(face, flow, o, stages);
+  StageSeconds passed;  // the stages of the attempt that passed
+  const std::string note = with_fallbacks(options, {&flow}, stages, [&](const PipelineOptions& o) {
+    StageSeconds attempt;
+    result.decomposition = decompose_flow(face, flow, o, attempt);
     result.blocks = mesh_blocks(face, result.decomposition, o.meshing);
+    passed = attempt;
   });
   if (!note.empty()) result.blocks.notes.push_back(note);
+  for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   for (const auto& [name, seconds] : result.blocks.stage_seconds) add_stage(stages, name, seconds);
   const auto t = Clock::now();
   result.quality = measure_quality(result.blocks.mesh);
@@ -155,14 +186,20 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   StageSeconds stages;
   std::vector<FlowOfFace> flows;
   for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
+  std::vector<const FlowOfFace*> flow_list;
+  for (const FlowOfFace& f : flows) flow_list.push_back(&f);
   std::vector<Decomposition> decompositions;
   FaceSetBlockMesh blocks;
-  const std::string note = with_fallbacks(options, [&](const PipelineOptions& o) {
+  StageSeconds passed;  // the decomposition time of the attempt that passed
+  const std::string note = with_fallbacks(options, flow_list, stages, [&](const PipelineOptions& o) {
+    StageSeconds attempt;
     decompositions.clear();
     for (std::size_t f = 0; f < faces.size(); ++f)
-      decompositions.push_back(decompose_flow(faces[f], flows[f], o, stages));
+      decompositions.push_back(decompose_flow(faces[f], flows[f], o, attempt));
     blocks = mesh_blocks_together(faces, decompositions, o.meshing);
+    passed = attempt;
   });
+  for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   if (!note.empty())
     for (BlockMesh& face : blocks.faces) face.notes.push_back(note);
   std::vector<const QuadMesh*> meshes;
