@@ -90,22 +90,31 @@ TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
 // Spur gears round a bore with a keyway (tests/data/make_gears.py): each is
 // one ring that submaps with its teeth and the keyway as notches, and no
 // singularity (each tooth's two convex and two reflex corners cancel). The
-// ring's first placement folds near the keyway beyond untangling, with or
-// without merging; split along every concave corner's cross, the gear is
-// blocks of few reflex corners each and meshes, the result saying so.
-TEST(MeshReference, KeyedGearsMeshWithSplitsAtEveryConcaveCorner) {
+// teeth force the ring's count round it far above the bore's goal; that
+// excess went all onto the bore's side of the keyway with the longer goal,
+// the lattice folded there beyond untangling, and the gears meshed only
+// split at every concave corner (1 362 and 2 534 quads, min scaled Jacobian
+// 0.53 and 0.31). Spread over the bore's pieces, the ring meshes as it is.
+// The split fallback itself, asked for, meshes them too.
+TEST(MeshReference, KeyedGearsMeshAsOneRing) {
   for (const char* name : {"gear_18_keyed", "gear_30_keyed"}) {
     std::ifstream in(std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/" + name + ".brep");
     std::stringstream text;
     text << in.rdbuf();
     const FaceModel face = face_model_from_brep_string(text.str(), name);
+    const double size = 0.05 * face.size;
     const MeshedFace m = meshed(face);
-    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size).empty()) << name;
-    EXPECT_EQ(m.quality.inverted, 0) << name;
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.3) << name;
-    EXPECT_TRUE(std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(), [](const std::string& note) {
-      return note.find("splits at every concave corner") != std::string::npos;
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, size).empty()) << name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.8) << name;
+    EXPECT_TRUE(std::none_of(m.blocks.notes.begin(), m.blocks.notes.end(), [](const std::string& note) {
+      return note.find("meshed with") != std::string::npos;
     })) << name;
+    PipelineOptions split;
+    split.meshing.size = size;
+    split.split_concave_corners = true;
+    const MeshedFace s = mesh_face(face, split);
+    EXPECT_TRUE(test::mesh_problems(face, s.blocks.mesh, size).empty()) << name;
+    EXPECT_GT(s.quality.min_scaled_jacobian, 0.2) << name;
   }
 }
 

@@ -359,7 +359,8 @@ struct BuiltModel {
 
 // The cost of n intervals on a segment wanting `goal` (g = max(goal, 1), as a
 // segment shorter than the target still gets one interval): |n - g| / g
-// within one interval below the goal and anywhere above it, so that a goal
+// within one interval below the goal and anywhere above it (where a count
+// piles up, faster beyond twice it: see add_goal_deviation), so that a goal
 // alone rounds to the nearest count; further below it grows as g / n, how
 // many times too large the elements are, as fast as n / g grows for too
 // small ones. (|n - g| / g all the way charged at most 1 for any coarsening
@@ -370,6 +371,8 @@ struct BuiltModel {
 // linearly at its slope there: no unit of deviation costs more than
 // kSteepRatio, so the facing and slit rows can stay above them all.
 constexpr double kSteepRatio = 8.0;
+// A count this many times its goal is piled up (see assign_intervals).
+constexpr double kPiledUp = 8.0;
 
 double goal_cost(double n, double g) {
   if (n >= g - 1.0) return std::abs(n - g) / g;
@@ -389,13 +392,32 @@ bool within_relative(double n, const IntervalSegment& seg) {
 // above (a few dozen columns on a segment of hundreds of intervals).
 // Breakpoints at integers make the relaxation's optimum integral on chains
 // of equal sides, which spares CBC most of its branching. Returns the
-// steepest unit cost going down.
-double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool ratio) {
+// steepest unit cost either way.
+double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool ratio, bool convex) {
   const double g = std::max(seg.goal, 1.0);
   const double base = std::floor(seg.goal);
   LinearExpr row = column(n);
   row[model.add_column(0.0, 1.0, (1.0 - 2.0 * (seg.goal - base)) / g, false)] -= 1.0;
-  row[model.add_column(0.0, kUnbounded, 1.0 / g, false)] -= 1.0;
+  // `convex`: from twice the goal on, each unit costs more than the one
+  // before (the cost grows as (n / 2g)^2, the unit's cost n / 2g^2, at every
+  // integer for 8 units, then in steps of a quarter of the way past 2g, up
+  // to 8g, linearly beyond): a count a block forces up is spread over the
+  // segments that can take it, not piled onto one (a gear ring's bore took
+  // all the teeth's excess on one side of its keyway, and the submapped
+  // lattice folded there). Without, 1 / g a unit all the way up.
+  double above = base + 1.0, slope = 1.0 / g;
+  const double knee = convex ? std::max(above, std::ceil(2.0 * g)) : above;
+  const double cap = std::max(knee, std::ceil(kPiledUp * g));
+  if (knee > above) row[model.add_column(0.0, knee - above, slope, false)] -= 1.0;
+  for (above = knee; convex && above < cap;) {
+    const double next = std::min(cap, above + std::max(1.0, std::floor((above - knee) / 4.0)));
+    slope = (above + next) / (4.0 * g * g);  // the secant of (n / 2g)^2
+    row[model.add_column(0.0, next - above, slope, false)] -= 1.0;
+    above = next;
+  }
+  if (convex) slope = std::max(slope, cap / (2.0 * g * g));
+  row[model.add_column(0.0, kUnbounded, slope, false)] -= 1.0;
+  const double steepest_above = slope;
   double steepest = 1.0 / g, k = base;
   if (ratio) {
     const double lowest = std::max<double>(seg.min_count, std::ceil(g / kSteepRatio));
@@ -409,7 +431,7 @@ double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool 
   }
   if (!ratio || k > seg.min_count) row[model.add_column(0.0, kUnbounded, steepest, false)] += 1.0;
   model.add_equation(row, base, true);
-  return steepest;
+  return std::max(steepest, steepest_above);
 }
 
 // The midpoint equations L_i = c_{i-1} + c_{i+1}; returns the c columns.
@@ -444,14 +466,14 @@ std::vector<int> add_two_sided(Model& model, const LinearExpr& n0, const LinearE
 }
 
 // Blocks [0, block_limit) only, so that a failure can be traced to a block.
-BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio) {
+BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio, bool convex) {
   BuiltModel built;
   Model& model = built.model;
   double smallest_weight = 1.0, steepest = 1.0, total_goal = 0.0;
   for (const IntervalSegment& seg : problem.segments) {
     const double lower = seg.min_count;
     const int n = model.add_integer(lower);
-    steepest = std::max(steepest, add_goal_deviation(model, n, seg, ratio));
+    steepest = std::max(steepest, add_goal_deviation(model, n, seg, ratio, convex));
     built.count_columns.push_back(n);
     smallest_weight = std::min(smallest_weight, 1.0 / std::max(seg.goal, 1.0));
     total_goal += std::max(seg.goal, lower);
@@ -729,7 +751,7 @@ size_t first_impossible_block(const IntervalProblem& problem) {
   size_t feasible = 0, infeasible = problem.blocks.size();
   while (infeasible - feasible > 1) {
     const size_t mid = (feasible + infeasible) / 2;
-    if (build(problem, mid, false).model.solve().infeasible)
+    if (build(problem, mid, false, false).model.solve().infeasible)
       infeasible = mid;
     else
       feasible = mid;
@@ -797,7 +819,7 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
   // goal_cost (not one of the answers of equal cost the solver meets first
   // on another path: rings of segments alike flipped, and smoothing's result
   // with them).
-  BuiltModel built = build(problem, problem.blocks.size(), false);
+  BuiltModel built = build(problem, problem.blocks.size(), false, false);
   Model::Outcome outcome = direct_outcome(problem, built);
   if (outcome.values.empty()) outcome = built.model.solve();
   if (outcome.infeasible) {
@@ -806,12 +828,28 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
                               " sides): its template's conditions cannot hold together with those of the blocks "
                               "before it, whatever the goals");
   }
+  // A count piled up far above its goal (a gear ring's bore side, 56 to 75
+  // times): solved again with the unit costs growing from twice the goal
+  // (add_goal_deviation), which spreads such excess. Only then: those
+  // columns make the problem over twice as large, and on the shared faces,
+  // whose counts reach 4 times their goals at most, the solves took twice
+  // as long (fractional optima, more CBC) for no better mesh.
+  bool convex = false;
+  for (size_t s = 0; s < problem.segments.size() && !convex; ++s) {
+    const IntervalSegment& seg = problem.segments[s];
+    convex = outcome.values[built.count_columns[s]] >
+             std::max<double>(std::ceil(kPiledUp * std::max(seg.goal, 1.0)), seg.min_count) + 0.5;
+  }
+  if (convex) {
+    built = build(problem, problem.blocks.size(), false, true);
+    outcome = built.model.solve();
+  }
   bool coarse = false;
   for (size_t s = 0; s < problem.segments.size(); ++s)
     coarse = coarse || !within_relative(outcome.values[built.count_columns[s]], problem.segments[s]);
   IntervalAssignment answer = read_answer(built, outcome.values);
   if (coarse) {
-    const BuiltModel second = build(problem, problem.blocks.size(), true);
+    const BuiltModel second = build(problem, problem.blocks.size(), true, convex);
     Model::Outcome better;
     try {
       better = second.model.solve();
