@@ -133,6 +133,24 @@ std::string fuzz_face_text(const std::string& name) {
   return text.str();
 }
 
+// The face's mesh at 0.05 of its diagonal, checked: valid, none inverted,
+// the worst element above 0. None (and a test failure) if it stops.
+std::optional<MeshedFace> valid_mesh_of(const std::string& name) {
+  const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+  PipelineOptions options;
+  options.meshing.size = 0.05 * face.size;
+  try {
+    MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.0) << name;
+    EXPECT_EQ(m.quality.inverted, 0) << name;
+    return m;
+  } catch (const SelfCheckError& e) {
+    ADD_FAILURE() << e.what();
+    return std::nullopt;
+  }
+}
+
 double area_of(const TopoDS_Face& face) {
   GProp_GProps props;
   BRepGProp::SurfaceProperties(face, props, 1e-12);
@@ -184,19 +202,7 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
         "bspline_2_1477",   "cascade_2_381",   "cascade_2_387",  "bspline_3_422",   "aerofoil_3_217", "filleted_7_740",
         "filleted_8_655",   "plate_8_891",     "bspline_10_182", "bspline_10_1787", "bspline_5_587",  "plate_5_1451",
         "filleted_14_1695", "filleted_9_1070", "aerofoil_12_63", "aerofoil_12_390"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
-    PipelineOptions options;
-    options.meshing.size = 0.05 * face.size;
-    MeshedFace m;
-    try {
-      m = mesh_face(face, options);
-    } catch (const SelfCheckError& e) {
-      ADD_FAILURE() << e.what();
-      continue;
-    }
-    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << name;
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.0) << name;
-    EXPECT_EQ(m.quality.inverted, 0) << name;
+    valid_mesh_of(name);
   }
 }
 
@@ -458,21 +464,11 @@ TEST(FuzzFaces, ContradictoryTemplatesAreRelaxedWithANote) {
 // of it, and the result says so.
 TEST(FuzzFaces, LessMergingWhereAMergedBlockCannotBeMeshed) {
   for (const char* name : {"cascade_12_40", "aerofoil_4_313", "aerofoil_9_293", "aerofoil_14_248"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
-    PipelineOptions options;
-    options.meshing.size = 0.05 * face.size;
-    MeshedFace m;
-    try {
-      m = mesh_face(face, options);
-    } catch (const SelfCheckError& e) {
-      ADD_FAILURE() << e.what();
-      continue;
-    }
-    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << name;
-    EXPECT_EQ(m.quality.inverted, 0) << name;
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.05) << name;
+    const std::optional<MeshedFace> m = valid_mesh_of(name);
+    if (!m) continue;
+    EXPECT_GT(m->quality.min_scaled_jacobian, 0.05) << name;
     bool noted = false;
-    for (const std::string& note : m.blocks.notes)
+    for (const std::string& note : m->blocks.notes)
       noted = noted ||
               (note.find("merging factor 0.75") != std::string::npos && note.find("meshed with") != std::string::npos);
     EXPECT_TRUE(noted) << name;
