@@ -335,13 +335,17 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
 // Voronoi edge its ray crossed, but the crossing test had the sign of the
 // edge's parameter wrong: it passed the edge just beside the centre and
 // joined an edge between two holes across a hole (a junction with no exact
-// point, kept 0.002 off its radius). Each
+// point, kept 0.002 off its radius). bspline_15_1532: a branch into a broad
+// lobe kept a point 8 past its curvature contact (radius 643.5 against the
+// contact's 649) and turned back 150 degrees onto the contact, short of the
+// turn-back test's 155 (the mesh flow saw the axis fold back). Each
 // axis must pass the medial checks and the mesh flow its own; every
 // junction touches three distinct places, every convex corner has its
 // flare and no edge turns back.
 TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBack) {
-  for (const char* name : {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422", "elliptic_10_129",
-                           "elliptic_10_1574", "bspline_10_1797", "bspline_10_182", "filleted_4_1455"}) {
+  for (const char* name :
+       {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422", "elliptic_10_129", "elliptic_10_1574",
+        "bspline_10_1797", "bspline_10_182", "filleted_4_1455", "bspline_15_1532"}) {
     const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
     const std::optional<MedialAxis> checked = axis_with_its_flow(face);
     if (!checked) continue;

@@ -1166,6 +1166,17 @@ class Builder {
                          : v.kind == MedialVertexKind::CurvatureContact ? 0.1 * v.r
                                                                         : 0.0;
     while (drop_one_overshoot(edge.points, at_end, reach)) continue;
+    // Along a branch the radius falls to the contact's at a curvature-contact
+    // end: points beside the end with a smaller one lie past the exact end
+    // (bspline_15_1532: the last point 8 beyond its contact of radius 649,
+    // at radius 643.5, and the branch turned back 150 degrees onto it).
+    if (v.kind != MedialVertexKind::CurvatureContact) return;
+    auto& pts = edge.points;
+    while (pts.size() > 2) {
+      const std::size_t k = at_end ? pts.size() - 2 : 1;
+      if (!(pts[k].r < v.r * (1 - 1e-9) && distance(pts[k].p, v.p) <= reach)) break;
+      pts.erase(pts.begin() + static_cast<std::ptrdiff_t>(k));
+    }
   }
 
   static bool drop_one_overshoot(std::vector<MedialPoint>& pts, bool at_end, double reach) {
