@@ -649,6 +649,12 @@ class Decomposer {
     return std::min(1, n - 1);
   }
 
+  // That point itself.
+  const MedialPoint& leaving_neighbour(int e, bool at_start) const {
+    const int k = leaving_point(e, at_start);
+    return axis_.edges[e].points[at_start ? k : point_count(e) - 1 - k];
+  }
+
   void sort_ends() {
     ends_.resize(axis_.vertices.size());
     for (std::size_t e = 0; e < axis_.edges.size(); ++e) {
@@ -1036,8 +1042,7 @@ class Decomposer {
     // the slot across): the runs there are those the edge leaves along.
     const int n = point_count(e);
     const auto runs_at = [&](int j) -> const MedialPoint& {
-      if (n < 3 || (j != 0 && j != n - 1)) return pts[j];
-      return j == 0 ? pts[leaving_point(e, true)] : pts[n - 1 - leaving_point(e, false)];
+      return n < 3 || (j != 0 && j != n - 1) ? pts[j] : leaving_neighbour(e, j == 0);
     };
     for (const int j : order) {
       const MedialPoint& own = runs_at(j);
@@ -1711,8 +1716,7 @@ class Decomposer {
     const MedialPoint& end = at_start ? pts.front() : pts.back();
     const BoundaryPlace& own = right ? end.right : end.left;
     if (pts.size() < 3) return own;
-    const int leaving = leaving_point(e, at_start);
-    const MedialPoint& next = at_start ? pts[leaving] : pts[pts.size() - 1 - leaving];
+    const MedialPoint& next = leaving_neighbour(e, at_start);
     const BoundaryPlace& neighbour = right ? next.right : next.left;
     // A touch on another loop is surely the junction's, not the edge's; on
     // the same loop, a jump of more than twice the medial step is taken as

@@ -560,10 +560,6 @@ class Builder {
     v.kind = MedialVertexKind::Junction;
     v.p = p;
     const std::vector<BoundaryPlace> candidates = junction_candidates(node, p);
-    const auto own_edges_touched = [&](const Equidistant& exact) {
-      return static_cast<int>(std::count_if(nodes_[node].edges.begin(), nodes_[node].edges.end(),
-                                            [&](int e) { return touches_edge(exact.p, exact.r, e); }));
-    };
     std::pair<int, double> best{1, 1e300};  // (minus own edges touched, distance)
     const auto consider = [&](const Equidistant& exact, bool held) {
       if (!exact.converged) return;
@@ -580,7 +576,7 @@ class Builder {
       };
       if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) return;
       if (avoid && distance(exact.p, avoid->p) <= 1e-9 * size()) return;
-      const std::pair<int, double> score{-own_edges_touched(exact), distance(exact.p, p)};
+      const std::pair<int, double> score{-own_edges_touched(node, exact.p, exact.r), distance(exact.p, p)};
       if (!(score < best)) return;
       std::vector<BoundaryPlace> touches;
       for (const BoundaryPlace& c : candidates) {
@@ -640,11 +636,7 @@ class Builder {
       if (!junction_node(a) || !junction_node(b)) continue;
       const MedialVertex &va = axis_.vertices[nodes_[a].vertex], &vb = axis_.vertices[nodes_[b].vertex];
       if (distance(va.p, vb.p) > 1e-9 * size()) continue;
-      const auto own_touched = [&](int node) {
-        return std::count_if(nodes_[node].edges.begin(), nodes_[node].edges.end(),
-                             [&](int e) { return touches_edge(va.p, va.r, e); });
-      };
-      const int redo = own_touched(a) < own_touched(b) ? a : b;
+      const int redo = own_edges_touched(a, va.p, va.r) < own_edges_touched(b, va.p, va.r) ? a : b;
       const MedialVertex& keep = redo == a ? vb : va;
       if (const std::optional<MedialVertex> other = exact_junction(redo, node_point(redo), &keep))
         axis_.vertices[nodes_[redo].vertex] = *other;
@@ -709,6 +701,13 @@ class Builder {
   }
   bool touches_edge(Vec2 p, double r, int voronoi_edge) const {
     return touches_site(p, r, graph_.edges[voronoi_edge].left) && touches_site(p, r, graph_.edges[voronoi_edge].right);
+  }
+
+  // How many of the node's own Voronoi edges the disc at p of radius r
+  // touches both places of.
+  int own_edges_touched(int node, Vec2 p, double r) const {
+    return static_cast<int>(std::count_if(nodes_[node].edges.begin(), nodes_[node].edges.end(),
+                                          [&](int e) { return touches_edge(p, r, e); }));
   }
 
   void repair_pair(int a, int b, int s) {

@@ -415,7 +415,7 @@ double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool 
     row[model.add_column(0.0, next - above, slope, false)] -= 1.0;
     above = next;
   }
-  if (convex) slope = std::max(slope, cap / (2.0 * g * g));
+  if (convex) slope = cap / (2.0 * g * g);  // the unit's cost at the cap, on beyond
   row[model.add_column(0.0, kUnbounded, slope, false)] -= 1.0;
   const double steepest_above = slope;
   double steepest = 1.0 / g, k = base;
