@@ -96,10 +96,7 @@ TEST(SingularityReference, PlateWithHoleHasPlusOneAtEachJunction) {
 }
 
 FaceModel fuzz_face(const std::string& name) {
-  std::ifstream in(std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/fuzz/" + name + ".brep");
-  std::stringstream text;
-  text << in.rdbuf();
-  return face_model_from_brep_string(text.str(), name);
+  return test::data_face("fuzz/" + name);
 }
 
 // docs/flux_balance.md section 5, found by the fuzz program: a thin strip

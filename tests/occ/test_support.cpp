@@ -46,6 +46,19 @@ FaceModel reference_face(const std::string& name) {
   return read_face_models(shared_dir() + "/geometry/" + name + ".brep", {}).front();
 }
 
+std::string data_brep_text(const std::string& name) {
+  const std::string path = std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/" + name + ".brep";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+FaceModel data_face(const std::string& name) {
+  return face_model_from_brep_string(data_brep_text(name), name.substr(name.rfind('/') + 1));
+}
+
 TopoDS_Face first_face(const TopoDS_Shape& shape) {
   TopExp_Explorer it(shape, TopAbs_FACE);
   if (!it.More()) throw std::runtime_error("shape has no face");

@@ -17,6 +17,11 @@ std::vector<std::string> brep_files(const std::string& folder);
 // The face of ../shared/geometry/NAME.brep.
 FaceModel reference_face(const std::string& name);
 
+// The text of tests/data/NAME.brep (NAME may hold a folder: "fuzz/strip_1_2"),
+// and the face it holds, named by the file's own name.
+std::string data_brep_text(const std::string& name);
+FaceModel data_face(const std::string& name);
+
 TopoDS_Face first_face(const TopoDS_Shape& shape);
 void write_brep(const TopoDS_Shape& shape, const std::string& path);
 
