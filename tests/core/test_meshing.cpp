@@ -51,6 +51,32 @@ TEST(Meshing, RandomFacesMeshValidlyOrSayWhyNot) {
   RecordProperty("errors", errors);
 }
 
+// Census face 1416: a ring round a small hole, slit from the hole through a
+// fixed singularity to the outline. Its corner-rule typing leaves the hole's
+// side far off its logical direction, yet its lattice holds; typed again
+// following the turning, the lattice outline meets itself. The pipeline then
+// types it by the corner rule alone, and says so.
+TEST(Meshing, SubmapCornersByTheCornerRuleWhereFollowingTheTurningFails) {
+  std::mt19937 rng(20261123);
+  FaceModel face;
+  for (int number = 0; number <= 1416; ++number) {
+    try {
+      face = test::random_meshing_face(rng, number);
+    } catch (const InputError&) {
+    }
+  }
+  ASSERT_EQ(face.name, "random face 1416");
+  PipelineOptions options;
+  options.meshing.size = test::random_meshing_size(face, 1416);
+  const MeshedFace m = mesh_face(face, options);
+  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+  ASSERT_EQ(m.blocks.notes.size(), 1u);
+  EXPECT_NE(
+      m.blocks.notes.front().find("meshed with merging factor 0.75 and submapped corners by the corner rule alone"),
+      std::string::npos)
+      << m.blocks.notes.front();
+}
+
 // A thin lens, an elliptic arc on its chord with tips of 14 to 40 degrees:
 // one block needing two convex corners besides its tips, which must go on
 // the arc (on the chord its element would have 180 degrees there).

@@ -98,10 +98,7 @@ TEST(MeshReference, EverySharedFaceMeshesValidlyOrSaysWhyNot) {
 // The split fallback itself, asked for, meshes them too.
 TEST(MeshReference, KeyedGearsMeshAsOneRing) {
   for (const char* name : {"gear_18_keyed", "gear_30_keyed"}) {
-    std::ifstream in(std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/" + name + ".brep");
-    std::stringstream text;
-    text << in.rdbuf();
-    const FaceModel face = face_model_from_brep_string(text.str(), name);
+    const FaceModel face = test::data_face(name);
     const double size = 0.05 * face.size;
     const MeshedFace m = meshed(face);
     EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, size).empty()) << name;
@@ -115,6 +112,35 @@ TEST(MeshReference, KeyedGearsMeshAsOneRing) {
     const MeshedFace s = mesh_face(face, split);
     EXPECT_TRUE(test::mesh_problems(face, s.blocks.mesh, size).empty()) << name;
     EXPECT_GT(s.quality.min_scaled_jacobian, 0.2) << name;
+  }
+}
+
+// A "6" engraved on an SMD component (FreeCAD's Idf library, 0603_SMD.stp
+// face 43 and 1206_SMD.stp face 77): a ring with a tail whose inner side
+// meets the ring at a reflex cusp. No singularity: one submapped block, cut
+// open by one split. Its corner types were chosen at the pieces' starts by
+// balance alone: the split's two sides, one count running both ways, passed
+// for the opposites of the others, so no counts existed (interval assignment
+// failed); and with that mended the side round the hole, turning a full turn
+// right, stayed one logical side and the lattice folded over the hole.
+// Corners now go where the outline has turned (pieces that turn are cut),
+// and the split's two sides balance only each other.
+TEST(MeshReference, GlyphRingWithACuspGetsCornersRoundItsHole) {
+  for (const char* name : {"glyph6_0603_smd", "glyph6_1206_smd"}) {
+    const FaceModel face = test::data_face(name);
+    const MeshedFace m = meshed(face);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size).empty()) << name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.2) << name;
+    EXPECT_TRUE(m.quality.irregular_interior.empty()) << name;
+    EXPECT_TRUE(m.blocks.notes.empty()) << name << ": " << m.blocks.notes.front();
+    ASSERT_EQ(m.decomposition.blocks.size(), 1u) << name;
+    const Block& ring = m.decomposition.blocks.front();
+    EXPECT_EQ(ring.kind, BlockKind::Submap) << name;
+    // The hole turns the outline a full turn right: four reflex corners at
+    // least, besides the cusp's.
+    const auto reflex =
+        std::count_if(ring.corners.begin(), ring.corners.end(), [](const BlockCorner& c) { return c.type >= 3; });
+    EXPECT_GE(reflex, 5) << name;
   }
 }
 

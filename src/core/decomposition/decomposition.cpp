@@ -1,6 +1,7 @@
 #include "decomposition/decomposition.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -134,19 +135,61 @@ struct Outline {
   int component = -1;
 };
 
+// Which count a piece of a block's outline carries: its own, or for a split
+// piece the one of that stretch of the split, which a block lying on both of
+// its sides (a split that opens a ring) walks twice, once each way.
+using CountKey = std::tuple<int, double, double, double, double>;
+CountKey count_key(const OutlinePiece& piece, int index) {
+  if (piece.split < 0 || piece.points.empty()) return {-1 - index, 0.0, 0.0, 0.0, 0.0};
+  Vec2 a = piece.points.front(), b = piece.points.back();
+  if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);
+  return {piece.split, a.x, a.y, b.x, b.y};
+}
+
+// Per piece: whether the block walks its count twice (see count_key). Both
+// walks carry one count, so where they run opposite ways they balance each
+// other and nothing else; they cannot stand in for another side's opposite.
+std::vector<bool> twin_splits(const std::vector<OutlinePiece>& pieces) {
+  std::map<CountKey, int> uses;
+  for (std::size_t i = 0; i < pieces.size(); ++i) ++uses[count_key(pieces[i], static_cast<int>(i))];
+  std::vector<bool> twin;
+  for (std::size_t i = 0; i < pieces.size(); ++i) twin.push_back(uses[count_key(pieces[i], static_cast<int>(i))] > 1);
+  return twin;
+}
+
 // Whether submapping can mesh a block with these types at its piece starts
 // (2 where no corner): only convex, flat and reflex corners, and every
 // direction its sides run in has sides running the opposite way, or their
-// counts would have to be 0.
-bool submappable(const std::vector<int>& types) {
+// counts would have to be 0 (the two sides of one split left out: see
+// twin_splits).
+bool submappable(const std::vector<int>& types, const std::vector<bool>& twin) {
   int direction = 0;
   bool used[4] = {false, false, false, false};
-  for (const int type : types) {
-    if (type < 1 || type > 3) return false;
-    direction = ((direction + 2 - type) % 4 + 4) % 4;
-    used[direction] = true;
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    if (types[i] < 1 || types[i] > 3) return false;
+    direction = ((direction + 2 - types[i]) % 4 + 4) % 4;
+    if (!twin[i]) used[direction] = true;
   }
   return used[0] == used[2] && used[1] == used[3];
+}
+
+// Whether the sides' counts can balance for this typing with every count at
+// least 1: along each axis, the net number of times each count (count_key)
+// runs forward must be all zero or take both signs. Catches the two walks of
+// one split that do not run opposite ways.
+bool counts_can_balance(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types) {
+  std::map<CountKey, std::array<int, 2>> net;  // per count: net times forward along x, y
+  int direction = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    direction = ((direction + 2 - types[i]) % 4 + 4) % 4;
+    net[count_key(pieces[i], static_cast<int>(i))][direction % 2] += direction < 2 ? 1 : -1;
+  }
+  for (int axis = 0; axis < 2; ++axis) {
+    bool positive = false, negative = false;
+    for (const auto& [key, along] : net) positive |= along[axis] > 0, negative |= along[axis] < 0;
+    if (positive != negative) return false;
+  }
+  return true;
 }
 
 // The interior angle of an outline at the start of piece i, in quarter turns
@@ -165,16 +208,68 @@ double interior_quarters(const std::vector<const OutlinePiece*>& pieces, std::si
   return 2.0 - turn / (0.5 * M_PI);
 }
 
+// How far a piece's sampled points turn along it, in quarter turns (left
+// positive).
+double piece_quarters(const OutlinePiece& piece, double tol) {
+  double turn = 0.0;
+  Vec2 last{0, 0};
+  for (std::size_t k = 1; k < piece.points.size(); ++k) {
+    const Vec2 d = piece.points[k] - piece.points[k - 1];
+    if (norm(d) <= tol) continue;
+    if (norm(last) > 0.0) turn += std::atan2(cross(last, d), dot(last, d));
+    last = d;
+  }
+  return turn / (0.5 * M_PI);
+}
+
+// The outline's direction at the middle of each piece, in quarter turns
+// from the middle of the last piece (whose logical direction is 0): the
+// interior angles at the piece starts (reversals turned the way `types`
+// says) and the pieces' own turning.
+std::vector<double> middle_directions(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types,
+                                      double tol) {
+  const std::size_t n = pieces.size();
+  std::vector<const OutlinePiece*> refs;
+  for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
+  std::vector<double> middles(n);
+  double direction = 0.5 * piece_quarters(pieces[n - 1], tol);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double along = piece_quarters(pieces[i], tol);
+    direction += 2.0 - interior_quarters(refs, i, types[i], tol) + 0.5 * along;
+    middles[i] = direction;
+    direction += 0.5 * along;
+  }
+  return middles;
+}
+
+// The largest difference between a piece's logical direction under a typing
+// and its own (middle_directions), in quarter turns.
+double largest_turning_gap(const std::vector<OutlinePiece>& pieces, const std::vector<int>& typing, double tol) {
+  const std::vector<double> middles = middle_directions(pieces, typing, tol);
+  double gap = 0.0;
+  int turning = 0;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    turning += 2 - typing[i];
+    gap = std::max(gap, std::abs(turning - middles[i]));
+  }
+  return gap;
+}
+
 // Types 1..3 at the piece starts of an outline that turns 4 quarter turns
 // and submaps, fewest changes from `types` first, then nearest the interior
 // angles (the paper's corner rule, Fig. 6: nc by the corner's angle): a
 // dynamic program over the piece starts with the turning so far and the
-// directions used. Empty when no typing submaps.
-std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types, double tol) {
+// directions used. Empty when no typing submaps. Following the turning, a
+// piece whose logical direction is more than half a quarter turn off its
+// own costs as much as a change per quarter turn.
+std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types, double tol,
+                               bool follow_turning) {
   const int n = static_cast<int>(types.size());
   if (n < 4) return {};  // four convex corners at least
+  const std::vector<bool> twin = twin_splits(pieces);
   std::vector<const OutlinePiece*> refs;
   for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
+  const std::vector<double> middles = middle_directions(pieces, types, tol);
   // State: turning so far (offset by n) and the directions used (4 bits).
   const int width = 2 * n + 1;
   const double kInf = std::numeric_limits<double>::infinity();
@@ -197,8 +292,9 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
         const int next_turning = turning + 2 - type;
         if (next_turning < -n || next_turning > n) continue;
         const int direction = ((next_turning % 4) + 4) % 4;
-        const int next = (next_turning + n) * 16 + (used | (1 << direction));
-        const double c = cost[i][state] + (type != types[i] ? 10.0 : 0.0) + std::abs(angle - type);
+        const int next = (next_turning + n) * 16 + (twin[i] ? used : used | (1 << direction));
+        const double off = follow_turning ? std::max(0.0, std::abs(next_turning - middles[i]) - 0.5) : 0.0;
+        const double c = cost[i][state] + (type != types[i] ? 10.0 : 0.0) + std::abs(angle - type) + 10.0 * off;
         if (c < cost[i + 1][next]) {
           cost[i + 1][next] = c;
           from[i + 1][next] = state * 4 + type;
@@ -218,6 +314,7 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
     typing[i - 1] = from[i][state] % 4;
     state = from[i][state] / 4;
   }
+  if (!counts_can_balance(pieces, typing)) return {};
   return typing;
 }
 
@@ -240,48 +337,81 @@ std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& pi
   return result;
 }
 
-// A submapped block whose corner types the mesher cannot submap (a cusp, a
-// slit, or sides that leave a direction without an opposite, whose counts
-// would have to be 0) is re-typed at its piece starts (submap_typing). A
-// block with too few piece starts for that (or whose only typings put a
-// convex corner where its outline runs straight) gets its boundary pieces cut
-// into halves, else thirds, and keeps the cuts where the typing puts a corner.
-// Returns false when no typing submaps.
-bool make_submappable(const FaceModel& face, Block& b, double tol) {
+// A block outline as pieces with their corner types (2 where no corner)
+// and, per piece, whether it starts at a cut made in a boundary piece.
+struct TypedPieces {
   std::vector<OutlinePiece> pieces;
   std::vector<int> types;
+  std::vector<bool> cut;
+};
+
+// Each boundary piece cut into parts(piece) equal parameter ranges; splits
+// and pieces of no length stay whole.
+template <class Parts>
+TypedPieces cut_pieces(const FaceModel& face, const TypedPieces& outline, Parts parts) {
+  TypedPieces finer;
+  for (std::size_t i = 0; i < outline.pieces.size(); ++i) {
+    const OutlinePiece& piece = outline.pieces[i];
+    const int n = piece.split >= 0 || piece.loop < 0 || std::abs(piece.t_to - piece.t_from) <= 0.0 ? 1 : parts(piece);
+    if (n <= 1) {
+      finer.pieces.push_back(piece);
+      finer.types.push_back(outline.types[i]);
+      finer.cut.push_back(outline.cut[i]);
+      continue;
+    }
+    const std::vector<OutlinePiece> split = parts_of(face, piece, n);
+    for (std::size_t p = 0; p < split.size(); ++p) {
+      finer.pieces.push_back(split[p]);
+      finer.types.push_back(p == 0 ? outline.types[i] : 2);
+      finer.cut.push_back(p == 0 ? outline.cut[i] : true);
+    }
+  }
+  return finer;
+}
+
+// A submapped block whose corner types the mesher cannot submap (a cusp, a
+// slit, or sides that leave a direction without an opposite, whose counts
+// would have to be 0) is re-typed at its piece starts (submap_typing), its
+// boundary pieces that turn through more than half a quarter turn first cut
+// so that a corner can go where each quarter turn is made. A block with too
+// few piece starts for a typing (or whose only typings put a convex corner
+// where its outline runs straight) gets its boundary pieces cut into halves,
+// else thirds. Cuts are kept where the typing puts a corner. Returns false
+// when no typing submaps.
+bool make_submappable(const FaceModel& face, Block& b, double tol, bool follow_turning) {
+  TypedPieces whole;
   for (std::size_t s = 0; s < b.sides.size(); ++s) {
     for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
-      pieces.push_back(b.sides[s].pieces[k]);
-      types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+      whole.pieces.push_back(b.sides[s].pieces[k]);
+      whole.types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+      whole.cut.push_back(false);
     }
   }
   int total = 0;
-  for (const int type : types) total += 2 - type;
-  if (total == 4 && submappable(types)) return true;
-  std::vector<int> typing = submap_typing(pieces, types, tol);
-  std::vector<bool> cut(pieces.size(), false);  // per piece: starts at a cut made here
+  for (const int type : whole.types) total += 2 - type;
+  if (total == 4 && submappable(whole.types, twin_splits(whole.pieces)) &&
+      counts_can_balance(whole.pieces, whole.types))
+    return true;
+  TypedPieces outline = whole;
+  std::vector<int> typing = submap_typing(whole.pieces, whole.types, tol, false);
   for (int parts = 2; typing.empty() && parts <= 3; ++parts) {
-    std::vector<OutlinePiece> finer;
-    std::vector<int> finer_types;
-    cut.clear();
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      if (pieces[i].split >= 0 || pieces[i].loop < 0 || std::abs(pieces[i].t_to - pieces[i].t_from) <= 0.0) {
-        finer.push_back(pieces[i]);
-        finer_types.push_back(types[i]);
-        cut.push_back(false);
-        continue;
-      }
-      const std::vector<OutlinePiece> split = parts_of(face, pieces[i], parts);
-      for (std::size_t p = 0; p < split.size(); ++p) {
-        finer.push_back(split[p]);
-        finer_types.push_back(p == 0 ? types[i] : 2);
-        cut.push_back(p > 0);
-      }
-    }
-    typing = submap_typing(finer, finer_types, tol);
-    if (!typing.empty()) pieces = std::move(finer);
+    TypedPieces finer = cut_pieces(face, whole, [parts](const OutlinePiece&) { return parts; });
+    typing = submap_typing(finer.pieces, finer.types, tol, false);
+    if (!typing.empty()) outline = std::move(finer);
   }
+  // A side more than one and a half quarter turns off its logical direction
+  // (one round a hole with no corner on it) folds the lattice: then, as when
+  // no typing was found, the pieces that turn are cut at every half quarter
+  // turn and the typing follows the turning.
+  if (typing.empty() || (follow_turning && largest_turning_gap(outline.pieces, typing, tol) > 1.5)) {
+    TypedPieces turned = cut_pieces(face, whole, [&](const OutlinePiece& piece) {
+      return std::min(8, static_cast<int>(std::ceil(std::abs(piece_quarters(piece, tol)) / 0.5)));
+    });
+    std::vector<int> following = submap_typing(turned.pieces, turned.types, tol, true);
+    if (!following.empty()) outline = std::move(turned), typing = std::move(following);
+  }
+  const std::vector<OutlinePiece>& pieces = outline.pieces;
+  const std::vector<bool>& cut = outline.cut;
   if (typing.empty()) return false;
   const int n = static_cast<int>(pieces.size());
   int first = 0;
@@ -2229,7 +2359,7 @@ class Decomposer {
       int sum = 0;
       for (const BlockCorner& c : b.corners) sum += 2 - c.type;
       if (sum != 4 + k_inside[o.component] && lenient_ && unit_in.count(o.component) == 0 &&
-          make_submappable(face_, b, tol_)) {
+          make_submappable(face_, b, tol_, options_.submap_corners_follow_turning)) {
         d.notes.push_back("a block's corner types from the mesh flow did not close up; it was re-typed by its angles");
       } else if (sum != 4 + k_inside[o.component]) {
         throw SelfCheckFailure("decomposition: the corners of a block sum to " + std::to_string(sum) +
@@ -2252,7 +2382,8 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_) && !cusp_to_polygon(o, b, d))
+        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_, options_.submap_corners_follow_turning) &&
+            !cusp_to_polygon(o, b, d))
           throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);

@@ -22,6 +22,10 @@ struct DecompositionOptions {
   // singularity needs it: smaller blocks, fewer reflex corners in any one
   // (for regions whose submapped placement folds).
   bool split_concave_corners = false;
+  // Where the corner rule leaves a side of a submapped block more than 135
+  // degrees off its logical direction, type the corners again following the
+  // outline's turning (else the lattice folds; off: a fallback).
+  bool submap_corners_follow_turning = true;
 };
 
 enum class SplitReason {

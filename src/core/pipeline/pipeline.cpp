@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "medial/medial_axis.hpp"
 #include "singularity/merge.hpp"
@@ -39,9 +40,16 @@ void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
 // less merging first, then none. Last, splits along every concave corner's
 // cross, with the merging asked for and with none: a big submapped region
 // with many reflex corners (a gear's ring with a keyway) whose placement
-// folds becomes blocks with few.
+// folds becomes blocks with few. First of all, submapped blocks typed by
+// their corners alone where following the outline's turning was tried: a
+// typing with a side far off its direction that the lattice survives.
 std::vector<PipelineOptions> fallbacks(const PipelineOptions& options) {
   std::vector<PipelineOptions> list;
+  if (options.submap_corners_follow_turning) {
+    PipelineOptions by_corners = options;
+    by_corners.submap_corners_follow_turning = false;
+    list.push_back(by_corners);
+  }
   PipelineOptions less = options;
   for (int step = 0; options.merge && step < 2; ++step) {
     if (options.tolerance.mesh_size > 0.0) {
@@ -78,6 +86,7 @@ std::string settings_text(const PipelineOptions& options) {
     text << "merging factor " << options.tolerance.radius_factor;
   }
   if (options.split_concave_corners) text << " and splits at every concave corner";
+  if (!options.submap_corners_follow_turning) text << " and submapped corners by the corner rule alone";
   return text.str();
 }
 
@@ -103,22 +112,24 @@ Decomposition decompose_flow(const FaceModel& face, const FlowOfFace& f, const P
   decomposition.merge = options.merge;
   decomposition.tolerance = options.tolerance;
   decomposition.split_concave_corners = options.split_concave_corners;
+  decomposition.submap_corners_follow_turning = options.submap_corners_follow_turning;
   Decomposition result = decompose(face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
 }
 
 // What the decomposition sees of the settings: whether it splits at every
-// concave corner, and on each face the groups of more than one singularity
-// that merging makes. Two settings alike in this decompose alike.
-using DecompositionKey = std::pair<bool, std::vector<std::vector<std::vector<int>>>>;
+// concave corner, how it types submapped corners, and on each face the
+// groups of more than one singularity that merging makes. Two settings alike
+// in this decompose alike.
+using DecompositionKey = std::tuple<bool, bool, std::vector<std::vector<std::vector<int>>>>;
 DecompositionKey decomposition_key(const std::vector<const FlowOfFace*>& flows, const PipelineOptions& options) {
-  DecompositionKey key{options.split_concave_corners, {}};
+  DecompositionKey key{options.split_concave_corners, options.submap_corners_follow_turning, {}};
   for (const FlowOfFace* f : flows) {
-    key.second.emplace_back();
+    auto& groups = std::get<2>(key).emplace_back();
     if (!options.merge) continue;
     for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.tolerance))
-      if (g.members.size() > 1) key.second.back().push_back(g.members);
+      if (g.members.size() > 1) groups.push_back(g.members);
   }
   return key;
 }

@@ -12,8 +12,9 @@ namespace mm {
 struct PipelineOptions {
   MeshingOptions meshing;
   bool merge = true;
-  MergeTolerance tolerance;            // factor 0.75 of the medial radius unless told otherwise
-  bool split_concave_corners = false;  // DecompositionOptions::split_concave_corners
+  MergeTolerance tolerance;                   // factor 0.75 of the medial radius unless told otherwise
+  bool split_concave_corners = false;         // DecompositionOptions::split_concave_corners
+  bool submap_corners_follow_turning = true;  // DecompositionOptions::submap_corners_follow_turning
 };
 
 struct MeshedFace {
@@ -24,8 +25,9 @@ struct MeshedFace {
 
 // Throws InputError for bad options, SelfCheckError when a stage's result
 // fails its check with the options asked for and with each fallback tried
-// after them: less merging (factor 0.5, 0.25, none), then splits at every
-// concave corner (a note in blocks.notes says when a fallback was used).
+// after them: submapped blocks' corners by the corner rule alone, less
+// merging (factor 0.5, 0.25, none), then splits at every concave corner (a
+// note in blocks.notes says when a fallback was used).
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // Several faces meshed together: the pieces of boundary they share in 3-D
