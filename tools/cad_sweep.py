@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Meshes every planar face of the CAD files this machine's packages bring
+(OCCT's sample parts, FreeCAD's IDF library of electronic packages) and of
+../shared/realcad/step with the medialmesh CLI at its default size, one
+process per face, and prints what failed, the worst meshes and the faces that
+needed a fallback. Real parts nobody here modelled: run it after changing a
+stage. Takes about an hour on one core (big STEP files are read once per face).
+
+    tools/cad_sweep.py [--cli build/bin/medialmesh] [--json OUT.json] [FILE...]
+"""
+
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT_FILES = (sorted(glob.glob("/usr/share/opencascade/data/occ/*.brep")) +
+                 sorted(glob.glob("/usr/share/opencascade/data/step/*")) +
+                 sorted(glob.glob("/usr/share/opencascade/data/iges/*")) +
+                 sorted(glob.glob("/usr/share/freecad/Mod/Idf/Idflibs/*.stp")) +
+                 sorted(glob.glob(os.path.join(ROOT, "..", "shared", "realcad", "step", "*"))))
+
+
+def planar_faces(cli, path):
+    """The planar faces' numbers, from the CLI's own listing ([1] for a one-face file)."""
+    run = subprocess.run([cli, "info", path], capture_output=True, text=True, timeout=600)
+    listed = re.search(r"planar faces: ([0-9, ]+)\)", run.stderr)
+    if listed:
+        return [int(n) for n in listed.group(1).split(",")]
+    return [1] if run.returncode == 0 else []
+
+
+def mesh(cli, path, face):
+    start = time.time()
+    run = subprocess.run(["timeout", "300", cli, "mesh", path, "--face", str(face), "--json"],
+                         capture_output=True, text=True)
+    result = {"file": path, "face": face, "exit": run.returncode, "seconds": time.time() - start}
+    if run.returncode == 0:
+        report = json.loads(run.stdout)
+        result.update(quads=report["quads"], min_scaled_jacobian=report["min_scaled_jacobian"],
+                      irregular=report["irregular_interior"], notes=report.get("notes", []))
+    else:
+        result["error"] = run.stderr.strip()
+    return result
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--cli", default=os.path.join(ROOT, "build", "bin", "medialmesh"))
+    parser.add_argument("--json", help="write every face's result here")
+    parser.add_argument("files", nargs="*", default=DEFAULT_FILES)
+    args = parser.parse_args()
+    results = []
+    for path in args.files:
+        for face in planar_faces(args.cli, path):
+            results.append(mesh(args.cli, path, face))
+            if args.json:
+                with open(args.json, "w") as out:
+                    json.dump(results, out, indent=0)
+    meshed = [r for r in results if r["exit"] == 0]
+    failed = [r for r in results if r["exit"] != 0]
+    fallback = [r for r in meshed if any("meshed with" in n for n in r["notes"])]
+    print(f"{len(results)} planar faces in {len(args.files)} files: {len(meshed)} meshed "
+          f"({len(fallback)} by a fallback), {len(failed)} stopped")
+    for bound in (0.1, 0.2, 0.3):
+        print(f"min scaled Jacobian below {bound}: {sum(r['min_scaled_jacobian'] < bound for r in meshed)}")
+    for r in failed:
+        print(f"stopped: {os.path.basename(r['file'])} face {r['face']}: {r['error'].splitlines()[0][:300]}")
+    for r in sorted(meshed, key=lambda r: r["min_scaled_jacobian"])[:10]:
+        print(f"worst: {os.path.basename(r['file'])} face {r['face']}: {r['min_scaled_jacobian']:.3f}")
+    for r in fallback:
+        print(f"fallback: {os.path.basename(r['file'])} face {r['face']}: {r['notes'][0][-120:]}")
+    return 0 if not failed else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
