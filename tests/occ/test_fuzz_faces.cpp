@@ -453,6 +453,25 @@ TEST(FuzzFaces, ContradictoryTemplatesAreRelaxedWithANote) {
   }
 }
 
+// B-spline outlines round a small hole (fuzz seeds 15 and 10): one submapped
+// ring opened by one split, meshed as one radial grid with the outline
+// taking about the hole's count (54 and 26 elements for area / H^2 = 138
+// and 142). Both get their count since the submap typing change (the two
+// walks of a split balance only each other; sides far off their direction
+// are typed again); bspline_15_1782 by the fallback that types its corners
+// by the corner rule alone.
+TEST(FuzzFaces, RingsRoundASmallHoleGetTheElementsAsked) {
+  for (const char* name : {"bspline_15_1782", "bspline_10_342"}) {
+    const std::optional<MeshedFace> m = valid_mesh_of(name);
+    if (!m) continue;
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
+    const double size = 0.05 * face.size;
+    EXPECT_EQ(test::element_count_problem(face, m->blocks.mesh, size), "") << name;
+    EXPECT_GT(static_cast<double>(m->quality.quads), 0.75 * face.area / (size * size)) << name;
+    EXPECT_GT(m->quality.min_scaled_jacobian, 0.4) << name;
+  }
+}
+
 // Faces whose merged singularities got a block their geometry does not fit:
 // cascade_12_40 (fuzz seed 12), six singularities behind a blade's trailing
 // edge merged into one k = +2 whose 6-sided block wrapped round the whole
