@@ -222,20 +222,28 @@ double piece_quarters(const OutlinePiece& piece, double tol) {
   return turn / (0.5 * M_PI);
 }
 
-// The outline's direction at the middle of each piece, in quarter turns
-// from the middle of the last piece (whose logical direction is 0): the
-// interior angles at the piece starts (reversals turned the way `types`
-// says) and the pieces' own turning.
-std::vector<double> middle_directions(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types,
-                                      double tol) {
-  const std::size_t n = pieces.size();
+// The interior angle at every piece start (interior_quarters), reversals
+// turned the way `types` says.
+std::vector<double> interior_angles(const std::vector<OutlinePiece>& pieces, const std::vector<int>& types,
+                                    double tol) {
   std::vector<const OutlinePiece*> refs;
   for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
+  std::vector<double> angles;
+  for (std::size_t i = 0; i < pieces.size(); ++i) angles.push_back(interior_quarters(refs, i, types[i], tol));
+  return angles;
+}
+
+// The outline's direction at the middle of each piece, in quarter turns
+// from the middle of the last piece (whose logical direction is 0): the
+// interior angles at the piece starts and the pieces' own turning.
+std::vector<double> middle_directions(const std::vector<OutlinePiece>& pieces, const std::vector<double>& angles,
+                                      double tol) {
+  const std::size_t n = pieces.size();
   std::vector<double> middles(n);
   double direction = 0.5 * piece_quarters(pieces[n - 1], tol);
   for (std::size_t i = 0; i < n; ++i) {
     const double along = piece_quarters(pieces[i], tol);
-    direction += 2.0 - interior_quarters(refs, i, types[i], tol) + 0.5 * along;
+    direction += 2.0 - angles[i] + 0.5 * along;
     middles[i] = direction;
     direction += 0.5 * along;
   }
@@ -245,7 +253,7 @@ std::vector<double> middle_directions(const std::vector<OutlinePiece>& pieces, c
 // The largest difference between a piece's logical direction under a typing
 // and its own (middle_directions), in quarter turns.
 double largest_turning_gap(const std::vector<OutlinePiece>& pieces, const std::vector<int>& typing, double tol) {
-  const std::vector<double> middles = middle_directions(pieces, typing, tol);
+  const std::vector<double> middles = middle_directions(pieces, interior_angles(pieces, typing, tol), tol);
   double gap = 0.0;
   int turning = 0;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -267,9 +275,8 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   const int n = static_cast<int>(types.size());
   if (n < 4) return {};  // four convex corners at least
   const std::vector<bool> twin = twin_splits(pieces);
-  std::vector<const OutlinePiece*> refs;
-  for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
-  const std::vector<double> middles = middle_directions(pieces, types, tol);
+  const std::vector<double> angles = interior_angles(pieces, types, tol);
+  const std::vector<double> middles = middle_directions(pieces, angles, tol);
   // State: turning so far (offset by n) and the directions used (4 bits).
   const int width = 2 * n + 1;
   const double kInf = std::numeric_limits<double>::infinity();
@@ -277,7 +284,7 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   std::vector<std::vector<int>> from(n + 1, std::vector<int>(width * 16, -1));
   cost[0][n * 16] = 0.0;
   for (int i = 0; i < n; ++i) {
-    const double angle = interior_quarters(refs, i, types[i], tol);
+    const double angle = angles[i];
     const OutlinePiece& before = pieces[(i + n - 1) % n];
     const bool inside_edge = before.split < 0 && pieces[i].split < 0 && before.loop >= 0 &&
                              before.loop == pieces[i].loop && before.edge == pieces[i].edge;
