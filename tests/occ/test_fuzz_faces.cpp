@@ -108,10 +108,8 @@
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <optional>
-#include <sstream>
 
 #include "decomposition_checks.hpp"
 #include "medial/medial_axis.hpp"
@@ -127,14 +125,10 @@
 namespace mm {
 namespace {
 
-std::string fuzz_face_text(const std::string& name) {
-  return test::data_brep_text("fuzz/" + name);
-}
-
 // The face's mesh at 0.05 of its diagonal, checked: valid, none inverted,
 // the worst element above 0. None (and a test failure) if it stops.
 std::optional<MeshedFace> valid_mesh_of(const std::string& name) {
-  const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+  const FaceModel face = test::data_face(std::string("fuzz/") + name);
   PipelineOptions options;
   options.meshing.size = 0.05 * face.size;
   try {
@@ -208,7 +202,7 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
 // end round to it (a tiny aerofoil's curve, its ends 6e-7 apart across the
 // trailing edge): right, and quick, however near the ends lie to ref.
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
-  const FaceModel face = face_model_from_brep_string(fuzz_face_text("aerofoil_1_68"), "aerofoil_1_68");
+  const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();
   for (const Loop& loop : face.loops) {
     for (const BoundaryEdge& e : loop.edges) {
@@ -242,7 +236,7 @@ TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
 TEST(FuzzFaces, MedialPointsTouchTheirGlobalNearestPlaces) {
   for (const char* name : {"bspline_1_117", "bspline_1_717", "bspline_1_1257", "bspline_1_1762", "bspline_1_1832",
                            "bspline_3_17", "bspline_3_767", "bspline_6_1277"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
     MedialAxis axis;
     try {
       axis = compute_medial_axis(face);
@@ -287,7 +281,7 @@ TEST(FuzzFaces, BranchesRunIntoTheirOwnCurvatureContacts) {
         "bspline_1_1887", "bspline_1_1917", "bspline_1_1927",  "bspline_1_1977",  "bspline_1_1802", "bspline_1_112",
         "bspline_1_497",  "bspline_1_1797", "elliptic_1_1724", "bspline_3_1347",  "bspline_5_1012", "bspline_3_982",
         "bspline_10_32",  "bspline_10_202", "bspline_10_172",  "bspline_10_1002", "bspline_10_1567"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
     const std::optional<MedialAxis> checked = axis_with_its_flow(face);
     if (!checked) continue;
     const MedialAxis& axis = *checked;
@@ -344,7 +338,7 @@ TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBa
   for (const char* name :
        {"bspline_2_152", "filleted_2_975", "bspline_2_1477", "bspline_3_422", "elliptic_10_129", "elliptic_10_1574",
         "bspline_10_1797", "bspline_10_182", "filleted_4_1455", "bspline_15_1532"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
     const std::optional<MedialAxis> checked = axis_with_its_flow(face);
     if (!checked) continue;
     const MedialAxis& axis = *checked;
@@ -387,7 +381,7 @@ TEST(FuzzFaces, JunctionsTouchThreePlacesFlaresReachTheirCornersEdgesNeverTurnBa
 // touches one loop on each side all along.
 TEST(FuzzFaces, JunctionsJoinedByAnEdgeAreApartAndShareItsTwoLoops) {
   for (const char* name : {"filleted_14_1695", "filleted_9_1070"}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
     const std::optional<MedialAxis> checked = axis_with_its_flow(face);
     if (!checked) continue;
     const MedialAxis& axis = *checked;
@@ -417,7 +411,7 @@ TEST(FuzzFaces, JunctionsJoinedByAnEdgeAreApartAndShareItsTwoLoops) {
 TEST(FuzzFaces, ElementCountFollowsTheTargetSize) {
   for (const auto& [name, ring] : std::vector<std::pair<std::string, bool>>{
            {"elliptic_1_119", false}, {"bspline_1_1957", true}, {"elliptic_1_609", true}}) {
-    const FaceModel face = face_model_from_brep_string(fuzz_face_text(name), name);
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
     PipelineOptions options;
     options.meshing.size = 0.05 * face.size;
     const MeshedFace m = mesh_face(face, options);
@@ -509,7 +503,7 @@ TEST(FuzzFaces, LessMergingWhereAMergedBlockCannotBeMeshed) {
 // stopped joining block outlines. The decomposition now checks that its
 // pieces meet each other and their edges: such a face stops there, loudly.
 TEST(FuzzFaces, DecompositionPiecesMeetTheirEdgesOrTheStageSaysSo) {
-  const FaceModel face = face_model_from_brep_string(fuzz_face_text("filleted_6_915"), "filleted_6_915");
+  const FaceModel face = test::data_face("fuzz/filleted_6_915");
   const MedialAxis axis = compute_medial_axis(face);
   const MeshFlow flow = compute_mesh_flow(face, axis);
   try {
@@ -538,7 +532,7 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
            {"bspline_1_1212", false},  {"bspline_1_1442", false},  {"filleted_1_1205", false},
            {"bspline_3_387", false},   {"bspline_1_717", false},   {"aerofoil_1_116", false},
            {"aerofoil_10_67", false},  {"strip_3_3", true}}) {
-    const std::string text = fuzz_face_text(name);
+    const std::string text = test::data_brep_text(std::string("fuzz/") + name);
     const FaceModel face = face_model_from_brep_string(text, name);
     const MedialAxis axis = compute_medial_axis(face);
     const MeshFlow flow = compute_mesh_flow(face, axis);
