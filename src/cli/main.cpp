@@ -182,9 +182,10 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-void run_singularities(const Options& o, const mm::FaceModel& face) {
-  const mm::MedialAxis axis = mm::compute_medial_axis(face);
-  const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+void run_singularities(const Options& o, const mm::FaceModel& given) {
+  const mm::FaceAxis medial = mm::compute_face_medial_axis(given);
+  const mm::FaceModel& face = medial.face;
+  const mm::MeshFlow flow = mm::compute_mesh_flow(face, medial.axis);
   std::vector<mm::SingularityGroup> groups;
   if (o.merge) groups = mm::merge_singularities(flow.singularities, *o.merge);
   std::vector<mm::SingularityMark> marks;
@@ -193,7 +194,8 @@ void run_singularities(const Options& o, const mm::FaceModel& face) {
   } else {
     for (const auto& s : flow.singularities) marks.push_back({s.p, s.k});
   }
-  const nlohmann::json report = mm::singularity_report_json(face, flow, o.merge ? &groups : nullptr);
+  nlohmann::json report = mm::singularity_report_json(face, flow, o.merge ? &groups : nullptr);
+  if (!medial.note.empty()) report["notes"] = {medial.note};
   if (o.json) {
     std::cout << report.dump(2) << "\n";
   } else {
@@ -212,13 +214,16 @@ void run_singularities(const Options& o, const mm::FaceModel& face) {
   }
 }
 
-void run_decompose(const Options& o, const mm::FaceModel& face) {
-  const mm::MedialAxis axis = mm::compute_medial_axis(face);
+void run_decompose(const Options& o, const mm::FaceModel& given) {
+  const mm::FaceAxis medial = mm::compute_face_medial_axis(given);
+  const mm::FaceModel& face = medial.face;
+  const mm::MedialAxis& axis = medial.axis;
   const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
   mm::DecompositionOptions options;
   options.merge = !o.no_merge;
   if (o.merge) options.tolerance = *o.merge;
-  const mm::Decomposition decomposition = mm::decompose(face, axis, flow, options);
+  mm::Decomposition decomposition = mm::decompose(face, axis, flow, options);
+  if (!medial.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), medial.note);
   if (o.json) std::cout << mm::decomposition_report_json(face, decomposition).dump(2) << "\n";
   if (!o.svg.empty()) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);
@@ -390,12 +395,14 @@ int run(const Options& o) {
   } else if (o.command == "mesh") {
     run_mesh(o, faces.front());
   } else {
-    const mm::MedialAxis axis = mm::compute_medial_axis(faces.front());
-    if (o.json) std::cout << mm::medial_report_json(axis).dump(2) << "\n";
+    const mm::FaceAxis medial = mm::compute_face_medial_axis(faces.front());
+    nlohmann::json report = mm::medial_report_json(medial.axis);
+    if (!medial.note.empty()) report["notes"] = {medial.note};
+    if (o.json) std::cout << report.dump(2) << "\n";
     if (!o.svg.empty()) {
-      mm::SvgCanvas canvas(mm::bounding_box(faces.front()), 800);
-      mm::draw_face(canvas, faces.front());
-      mm::draw_medial_axis(canvas, faces.front(), axis);
+      mm::SvgCanvas canvas(mm::bounding_box(medial.face), 800);
+      mm::draw_face(canvas, medial.face);
+      mm::draw_medial_axis(canvas, medial.face, medial.axis);
       canvas.save(o.svg);
     }
   }

@@ -157,9 +157,10 @@ PYBIND11_MODULE(_medialmesh, m) {
   m.def(
       "medial_axis",
       [](const std::string& brep, const std::string& name) {
-        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
-        nlohmann::json report = mm::medial_report_json(mm::compute_medial_axis(face));
-        report["frame"] = mm::frame_json(face.frame);
+        const mm::FaceAxis medial = mm::compute_face_medial_axis(mm::face_model_from_brep_string(brep, name));
+        nlohmann::json report = mm::medial_report_json(medial.axis);
+        if (!medial.note.empty()) report["notes"] = {medial.note};
+        report["frame"] = mm::frame_json(medial.face.frame);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face",
@@ -170,8 +171,9 @@ PYBIND11_MODULE(_medialmesh, m) {
       "analyse",
       [](const std::string& brep, const std::string& name, std::optional<double> merge_factor,
          std::optional<double> mesh_size) {
-        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
-        const mm::MedialAxis axis = mm::compute_medial_axis(face);
+        const mm::FaceAxis medial = mm::compute_face_medial_axis(mm::face_model_from_brep_string(brep, name));
+        const mm::FaceModel& face = medial.face;
+        const mm::MedialAxis& axis = medial.axis;
         const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
         std::vector<mm::SingularityGroup> groups;
         const bool merge = merge_factor || mesh_size;
@@ -179,6 +181,7 @@ PYBIND11_MODULE(_medialmesh, m) {
           groups = mm::merge_singularities(flow.singularities, {merge_factor.value_or(0.75), mesh_size.value_or(0.0)});
         nlohmann::json report = mm::singularity_report_json(face, flow, merge ? &groups : nullptr);
         report["medial_axis"] = mm::medial_report_json(axis);
+        if (!medial.note.empty()) report["notes"] = {medial.note};
         report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },
@@ -193,13 +196,15 @@ PYBIND11_MODULE(_medialmesh, m) {
       "decompose",
       [](const std::string& brep, const std::string& name, std::optional<double> merge,
          std::optional<double> mesh_size) {
-        const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
-        const mm::MedialAxis axis = mm::compute_medial_axis(face);
-        const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+        const mm::FaceAxis medial = mm::compute_face_medial_axis(mm::face_model_from_brep_string(brep, name));
+        const mm::FaceModel& face = medial.face;
+        const mm::MeshFlow flow = mm::compute_mesh_flow(face, medial.axis);
         mm::DecompositionOptions options;
         options.merge = merge.has_value() || mesh_size.has_value();
         options.tolerance = {merge.value_or(0.75), mesh_size.value_or(0.0)};
-        nlohmann::json report = mm::decomposition_report_json(face, mm::decompose(face, axis, flow, options));
+        mm::Decomposition decomposition = mm::decompose(face, medial.axis, flow, options);
+        if (!medial.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), medial.note);
+        nlohmann::json report = mm::decomposition_report_json(face, decomposition);
         report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },

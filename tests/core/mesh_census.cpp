@@ -38,11 +38,11 @@ int main(int argc, char** argv) {
       options.meshing.order = order;
       try {
         if (number == picture && order == 1) {
-          const MedialAxis axis = compute_medial_axis(face);
-          const MeshFlow flow = compute_mesh_flow(face, axis);
-          const Decomposition decomposition = decompose(face, axis, flow, DecompositionOptions{});
+          const FaceAxis medial = compute_face_medial_axis(face);
+          const MeshFlow flow = compute_mesh_flow(medial.face, medial.axis);
+          const Decomposition decomposition = decompose(medial.face, medial.axis, flow, DecompositionOptions{});
           SvgCanvas canvas(bounding_box(face), 900);
-          draw_decomposition(canvas, face, axis, decomposition);
+          draw_decomposition(canvas, medial.face, medial.axis, decomposition);
           for (const Block& block : decomposition.blocks) {
             Vec2 c{0, 0};
             for (const Vec2& q : block.outline) c = c + q * (1.0 / block.outline.size());
@@ -65,8 +65,9 @@ int main(int argc, char** argv) {
         if (verbose) {
           std::cout << number << " order " << order << ": " << what << "\n";
           try {
-            const MedialAxis axis = compute_medial_axis(face);
-            const Decomposition decomposition = decompose(face, axis, compute_mesh_flow(face, axis), {});
+            const FaceAxis medial = compute_face_medial_axis(face);
+            const Decomposition decomposition =
+                decompose(medial.face, medial.axis, compute_mesh_flow(medial.face, medial.axis), {});
             for (std::size_t b = 0; b < decomposition.blocks.size(); ++b) {
               const Block& block = decomposition.blocks[b];
               std::cout << "  block " << b << (block.kind == BlockKind::Polygon ? " polygon" : " submap") << " k "

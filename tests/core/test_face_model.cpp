@@ -119,6 +119,24 @@ TEST(FaceModel, RecognisesArcsStoredAsBSplines) {
   EXPECT_EQ(predicted_sum_k(face), -4);
 }
 
+TEST(FaceModel, KinksWithinTheSmoothAngleAreCornersOnlyWhenAsked) {
+  // A rectangle whose top bends by 0.23 degrees at (1, 1.001); a quarter
+  // circle meets a tangent line at (2, 0.5).
+  std::vector<BoundaryEdge> edges = polygon({{0, 0}, {1.5, 0}, {2, 0.5}, {2, 1}, {1, 1.001}, {0, 1}});
+  edges[1] = BoundaryEdge{CircleCurve{{1.5, 0.5}, 0.5, -kPi / 2, 1}, 0.0, kPi / 2, 0, {}, {}};
+  const FaceModel face = build_face_model(raw({edges}));
+  EXPECT_EQ(face.corners.size(), 3u);  // the rectangle's unrounded three
+  const FaceModel kinked = with_kinks_as_corners(face);
+  ASSERT_EQ(kinked.corners.size(), 4u);  // and the bend, not the tangent joins
+  const auto bend = std::find_if(kinked.corners.begin(), kinked.corners.end(), [](const Corner& c) {
+    return distance(c.position, {1, 1.001}) < 1e-12;
+  });
+  ASSERT_NE(bend, kinked.corners.end());
+  EXPECT_NEAR(bend->angle, kPi - 2 * std::atan(0.001), 1e-9);  // convex
+  EXPECT_EQ(bend->nc, 2);
+  EXPECT_EQ(predicted_sum_k(kinked), predicted_sum_k(face));
+}
+
 TEST(FaceModel, KeepsFreeFormBSplines) {
   // A cubic bulge on top of a unit square: not a line, not an arc.
   BSplineCurve top{3, {0, 0, 0, 0, 1, 1, 1, 1}, {{1, 1}, {0.7, 1.6}, {0.3, 1.1}, {0, 1}}, {}};

@@ -11,6 +11,8 @@ namespace {
 
 // Tangent joins within this angle of a straight continuation are smooth.
 constexpr double kSmoothAngle = 0.5 * kPi / 180.0;
+// A join closer than this to tangent is one to the curves' precision.
+constexpr double kKinkAngle = 1e-6;
 // A B-spline is taken as a straight line if it stays within this fraction of
 // the face size of its chord, and as an arc if it stays within a fraction of
 // the arc's radius and of the face size: CAD systems approximate arcs to
@@ -261,6 +263,21 @@ double interior_angle(const BoundaryEdge& in, const BoundaryEdge& out) {
   return spike ? from_antiparallel : 2.0 * kPi - from_antiparallel;
 }
 
+// The joins whose interior angle is more than smooth_angle off pi, in loop order.
+std::vector<Corner> find_corners(const FaceModel& face, double smooth_angle) {
+  std::vector<Corner> corners;
+  for (std::size_t li = 0; li < face.loops.size(); ++li) {
+    const auto& edges = face.loops[li].edges;
+    for (std::size_t i = 0; i < edges.size(); ++i) {
+      const BoundaryEdge& in = edges[(i + edges.size() - 1) % edges.size()];
+      const double angle = interior_angle(in, edges[i]);
+      if (std::abs(angle - kPi) <= smooth_angle) continue;
+      corners.push_back({static_cast<int>(li), static_cast<int>(i), edges[i].start, angle, optimal_corner_type(angle)});
+    }
+  }
+  return corners;
+}
+
 }  // namespace
 
 int optimal_corner_type(double angle) {
@@ -485,17 +502,14 @@ FaceModel build_face_model(RawFace raw) {
   if (!problem.empty()) throw InputError(name + ": " + problem);
   if (!(face.area > 1e-12 * size * size)) throw InputError(name + ": face has no area");
 
-  for (std::size_t li = 0; li < face.loops.size(); ++li) {
-    const auto& edges = face.loops[li].edges;
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      const BoundaryEdge& in = edges[(i + edges.size() - 1) % edges.size()];
-      const double angle = interior_angle(in, edges[i]);
-      if (std::abs(angle - kPi) <= kSmoothAngle) continue;
-      face.corners.push_back(
-          {static_cast<int>(li), static_cast<int>(i), edges[i].start, angle, optimal_corner_type(angle)});
-    }
-  }
+  face.corners = find_corners(face, kSmoothAngle);
   return face;
+}
+
+FaceModel with_kinks_as_corners(const FaceModel& face) {
+  FaceModel kinked = face;
+  kinked.corners = find_corners(face, kKinkAngle);
+  return kinked;
 }
 
 }  // namespace mm

@@ -83,6 +83,11 @@ struct RawFace {
 // stored as B-splines, and classifies corners. Throws InputError.
 FaceModel build_face_model(RawFace raw);
 
+// The face with every join more than 1e-6 rad off tangent a corner, those
+// within the 0.5 degrees build_face_model takes as smooth too: the face as
+// its curves are, for when taking a kink as smooth misleads a later stage.
+FaceModel with_kinks_as_corners(const FaceModel& face);
+
 // Sum of singularity indices every quad mesh of the face must have
 // (Poincare-Hopf): sum over corners of (2 - nc) minus 4 times the Euler characteristic.
 int predicted_sum_k(const FaceModel& face);

@@ -2,6 +2,7 @@
 // The medial axis of a face: the centres of the maximal discs inside it, as a
 // graph of vertices and edges, every point with its radius and the boundary
 // places its disc touches (the paper's section 1.1).
+#include <string>
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -59,6 +60,18 @@ struct MedialAxis {
 // more than 1e-6 of the face size plus its tolerance, or is not one connected
 // graph with a cycle round each hole.
 MedialAxis compute_medial_axis(const FaceModel& face);
+
+// The stage's entry point: compute_medial_axis, and where its self-check
+// fails on a face with joins taken as smooth that are not tangent, the axis
+// of the face with those joins as corners (with_kinks_as_corners). The later
+// stages must take `face` from here: its corners are the axis's. Throws the
+// first SelfCheckError if both fail.
+struct FaceAxis {
+  FaceModel face;
+  MedialAxis axis;
+  std::string note;  // empty, or what was done and why
+};
+FaceAxis compute_face_medial_axis(const FaceModel& face);
 
 // How far the boundary reaches into the worst medial disc (vertex or edge
 // point): 0 or less for an exact axis.

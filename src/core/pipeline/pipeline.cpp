@@ -90,30 +90,34 @@ std::string settings_text(const PipelineOptions& options) {
   return text.str();
 }
 
+// The face as the medial axis took it (its kinks as corners if that was
+// needed), its axis and mesh flow.
 struct FlowOfFace {
+  FaceModel face;
   MedialAxis axis;
+  std::string note;
   MeshFlow flow;
 };
 
 FlowOfFace flow_of_face(const FaceModel& face, StageSeconds& stages) {
   auto t = Clock::now();
-  FlowOfFace result{compute_medial_axis(face), {}};
+  FaceAxis medial = compute_face_medial_axis(face);
+  FlowOfFace result{std::move(medial.face), std::move(medial.axis), std::move(medial.note), {}};
   add_stage(stages, "medial_axis", seconds_since(t));
   t = Clock::now();
-  result.flow = compute_mesh_flow(face, result.axis);
+  result.flow = compute_mesh_flow(result.face, result.axis);
   add_stage(stages, "singularities", seconds_since(t));
   return result;
 }
 
-Decomposition decompose_flow(const FaceModel& face, const FlowOfFace& f, const PipelineOptions& options,
-                             StageSeconds& stages) {
+Decomposition decompose_flow(const FlowOfFace& f, const PipelineOptions& options, StageSeconds& stages) {
   const auto t = Clock::now();
   DecompositionOptions decomposition;
   decomposition.merge = options.merge;
   decomposition.tolerance = options.tolerance;
   decomposition.split_concave_corners = options.split_concave_corners;
   decomposition.submap_corners_follow_turning = options.submap_corners_follow_turning;
-  Decomposition result = decompose(face, f.axis, f.flow, decomposition);
+  Decomposition result = decompose(f.face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
 }
@@ -175,10 +179,11 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   StageSeconds passed;  // the stages of the attempt that passed
   const std::string note = with_fallbacks(options, {&flow}, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
-    result.decomposition = decompose_flow(face, flow, o, attempt);
-    result.blocks = mesh_blocks(face, result.decomposition, o.meshing);
+    result.decomposition = decompose_flow(flow, o, attempt);
+    result.blocks = mesh_blocks(flow.face, result.decomposition, o.meshing);
     passed = attempt;
   });
+  if (!flow.note.empty()) result.blocks.notes.push_back(flow.note);
   if (!note.empty()) result.blocks.notes.push_back(note);
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   for (const auto& [name, seconds] : result.blocks.stage_seconds) add_stage(stages, name, seconds);
@@ -197,6 +202,8 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   StageSeconds stages;
   std::vector<FlowOfFace> flows;
   for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
+  std::vector<FaceModel> taken;  // the faces as their medial axes took them
+  for (const FlowOfFace& f : flows) taken.push_back(f.face);
   std::vector<const FlowOfFace*> flow_list;
   for (const FlowOfFace& f : flows) flow_list.push_back(&f);
   std::vector<Decomposition> decompositions;
@@ -205,12 +212,13 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   const std::string note = with_fallbacks(options, flow_list, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
     decompositions.clear();
-    for (std::size_t f = 0; f < faces.size(); ++f)
-      decompositions.push_back(decompose_flow(faces[f], flows[f], o, attempt));
-    blocks = mesh_blocks_together(faces, decompositions, o.meshing);
+    for (std::size_t f = 0; f < faces.size(); ++f) decompositions.push_back(decompose_flow(flows[f], o, attempt));
+    blocks = mesh_blocks_together(taken, decompositions, o.meshing);
     passed = attempt;
   });
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (!flows[f].note.empty()) blocks.faces[f].notes.push_back(flows[f].note);
   if (!note.empty())
     for (BlockMesh& face : blocks.faces) face.notes.push_back(note);
   std::vector<const QuadMesh*> meshes;
@@ -230,7 +238,7 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   }
   result.shared = std::move(blocks.shared);
   auto t = Clock::now();
-  result.mesh = merge_face_meshes(faces, meshes, result.shared, blocks.tolerance);
+  result.mesh = merge_face_meshes(taken, meshes, result.shared, blocks.tolerance);
   stages.emplace_back("merge", seconds_since(t));
   t = Clock::now();
   result.quality = combine_quality(reports, meshes, result.mesh);
