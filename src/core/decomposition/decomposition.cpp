@@ -444,6 +444,26 @@ bool make_submappable(const FaceModel& face, Block& b, double tol, bool follow_t
   return true;
 }
 
+// How far along the ray from `from` in direction `ray` it enters the box
+// (0 if it starts inside), infinity if it misses it (slab test; a box of
+// no width in a direction is entered where the ray is within it).
+double ray_box_entry(Vec2 from, Vec2 ray, const Box& box) {
+  double enter = 0.0, leave = std::numeric_limits<double>::infinity();
+  const double origin[2] = {from.x, from.y}, direction[2] = {ray.x, ray.y};
+  const double lo[2] = {box.min.x, box.min.y}, hi[2] = {box.max.x, box.max.y};
+  for (int axis = 0; axis < 2; ++axis) {
+    if (direction[axis] == 0.0) {
+      if (origin[axis] < lo[axis] || origin[axis] > hi[axis]) return std::numeric_limits<double>::infinity();
+      continue;
+    }
+    double a = (lo[axis] - origin[axis]) / direction[axis], b = (hi[axis] - origin[axis]) / direction[axis];
+    if (a > b) std::swap(a, b);
+    enter = std::max(enter, a);
+    leave = std::min(leave, b);
+  }
+  return enter <= leave ? enter : std::numeric_limits<double>::infinity();
+}
+
 // The side pairs of a submapped block with a reflex corner that face each
 // other across it or across something outside it (Block::facing and
 // facing_outside): from points along side s straight into (out of) the
@@ -461,6 +481,21 @@ void find_facing_sides(Block& b) {
       for (const Vec2 p : piece.points)
         if (lines[i].empty() || distance(lines[i].back(), p) > 0.0) lines[i].push_back(p);
     }
+  }
+  // Each side's bounding box, a little larger than the side so that rounding
+  // never drops a hit: a ray that misses it, or enters it only beyond the
+  // nearest hit so far, cannot hit the side.
+  std::vector<Box> boxes(m);
+  for (int i = 0; i < m; ++i) {
+    Box& box = boxes[i];
+    box.min = box.max = lines[i].empty() ? Vec2{0, 0} : lines[i].front();
+    for (const Vec2 p : lines[i]) {
+      box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
+      box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
+    }
+    const double margin = 1e-9 * (1.0 + std::abs(box.min.x) + std::abs(box.min.y) + distance(box.min, box.max));
+    box.min = box.min - Vec2{margin, margin};
+    box.max = box.max + Vec2{margin, margin};
   }
   std::set<std::pair<int, int>> inside, outside;
   for (int s = 0; s < m; ++s) {
@@ -493,6 +528,7 @@ void find_facing_sides(Block& b) {
         int hit = -1;
         double nearest = std::numeric_limits<double>::infinity();
         for (int t = 0; t < m; ++t) {
+          if (!(ray_box_entry(from, ray, boxes[t]) < nearest)) continue;
           for (std::size_t k = 0; k + 1 < lines[t].size(); ++k) {
             const Vec2 a = lines[t][k], d = lines[t][k + 1] - a;
             const double denominator = cross(ray, d);
@@ -1207,7 +1243,8 @@ class Decomposer {
     if (marks_version_ == version_) return marks_;
     marks_version_ = version_;
     std::vector<std::vector<Mark>>& marks = marks_;
-    marks.assign(axis_.edges.size(), {});
+    marks.resize(axis_.edges.size());
+    for (auto& list : marks) list.clear();  // keeping their memory: rebuilt after every cut
     for (std::size_t m = 0; m < locations_.size(); ++m) {
       if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && floating(unit_of_[m]))
         marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
