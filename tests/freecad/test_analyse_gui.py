@@ -12,7 +12,7 @@ import unittest
 import FreeCAD
 import FreeCADGui
 import Part
-from PySide2 import QtGui
+from PySide2 import QtGui, QtWidgets
 
 from MedialMesh import analysis
 
@@ -59,6 +59,9 @@ class TestAnalyseCommand(unittest.TestCase):
         toolbars = FreeCADGui.getWorkbench("MedialMeshWorkbench").getToolbarItems()
         self.assertIn("MedialMesh_Analyse", toolbars["MedialMesh"])
         self.assertTrue(os.path.isfile(FreeCADGui.Command.get("MedialMesh_Analyse").getInfo()["pixmap"]))
+        menus = [m for m in FreeCADGui.getMainWindow().menuBar().findChildren(QtWidgets.QMenu)
+                 if m.title() == "MedialMesh"]
+        self.assertIn("Analyse face", [a.text() for m in menus for a in m.actions()])
 
     def test_enabled_only_for_planar_faces(self):
         command = FreeCADGui.Command.get("MedialMesh_Analyse")

@@ -12,7 +12,7 @@ import unittest
 import FreeCAD
 import FreeCADGui
 import Part
-from PySide2 import QtGui
+from PySide2 import QtGui, QtWidgets
 
 from MedialMesh import decomposition
 from test_analyse_gui import PLACEMENT, colour_count
@@ -47,6 +47,9 @@ class TestDecomposeCommand(unittest.TestCase):
         self.assertIn("MedialMesh_Decompose", toolbars["MedialMesh"])
         pixmap = FreeCADGui.Command.get("MedialMesh_Decompose").getInfo()["pixmap"]
         self.assertTrue(pixmap.endswith("MedialMesh_Decompose.svg") and os.path.isfile(pixmap))
+        menus = [m for m in FreeCADGui.getMainWindow().menuBar().findChildren(QtWidgets.QMenu)
+                 if m.title() == "MedialMesh"]
+        self.assertIn("Decompose face", [a.text() for m in menus for a in m.actions()])
 
     def test_enabled_only_for_planar_faces(self):
         command = FreeCADGui.Command.get("MedialMesh_Decompose")

@@ -153,6 +153,43 @@ class TestDecomposeFace(unittest.TestCase):
             MedialMesh.decompose_face("not a face")
 
 
+class TestCompiledDecompose(unittest.TestCase):
+    """_medialmesh.decompose itself, as a macro writer calls it on BREP text."""
+
+    def test_report_of_the_plate(self):
+        import _medialmesh
+
+        face = shared_face("plate_with_hole")
+        report = _medialmesh.decompose(face.exportBrepToString(), "plate", merge=0.75)
+        for key in ("blocks", "splits", "fixed", "singularities", "fallback", "notes", "face_area", "frame"):
+            self.assertIn(key, report)
+        self.assertEqual(len(report["splits"]), 4)
+        self.assertEqual([(b["kind"], b["sides"], b["singularity"]["k"]) for b in report["blocks"]],
+                         [("polygon", 5, 1)] * 4)
+        self.assertAlmostEqual(sum(b["area"] for b in report["blocks"]) / face.Area, 1.0, delta=1e-9)
+        self.assertAlmostEqual(report["face_area"] / face.Area, 1.0, delta=1e-9)
+        for block in report["blocks"]:
+            outline = block["boundary"]
+            twice_area = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(outline, outline[1:] + outline[:1]))
+            self.assertGreater(twice_area, 0.0)  # counter-clockwise
+            self.assertEqual(len(block["corners"]), 5)
+
+    def test_merging_is_asked_for(self):
+        import _medialmesh
+
+        brep = shared_face("ellipse").exportBrepToString()
+        merged = _medialmesh.decompose(brep, "ellipse", merge=1.0)
+        self.assertEqual([(b["kind"], b["sides"]) for b in merged["blocks"]], [("polygon", 2)] * 2)
+        unmerged = _medialmesh.decompose(brep, "ellipse")  # neither merge nor mesh_size: no merging
+        self.assertGreater(len(unmerged["singularities"]), 2)
+
+    def test_bad_face_raises_input_error(self):
+        import _medialmesh
+
+        with self.assertRaises(_medialmesh.InputError):
+            _medialmesh.decompose(Part.makeCylinder(1, 2).Faces[0].exportBrepToString(), "cylinder side")
+
+
 class TestDecompositionObject(unittest.TestCase):
 
     def setUp(self):
