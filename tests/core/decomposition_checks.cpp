@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
@@ -41,6 +42,25 @@ bool cross_properly(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double tol) {
   const double ab = norm(b - a), cd = norm(d - c);
   return ((d1 > tol * ab && d2 < -tol * ab) || (d1 < -tol * ab && d2 > tol * ab)) &&
          ((d3 > tol * cd && d4 < -tol * cd) || (d3 < -tol * cd && d4 > tol * cd));
+}
+
+// A point inside the (counter-clockwise, simple) polygon, a little to the
+// left of one of its longer segments, or none if every try falls outside.
+std::optional<Vec2> point_just_inside(const std::vector<Vec2>& polygon, double reach) {
+  const std::size_t n = polygon.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  const auto length = [&](std::size_t i) { return distance(polygon[i], polygon[(i + 1) % n]); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return length(a) > length(b); });
+  for (std::size_t k = 0; k < std::min<std::size_t>(n, 8); ++k) {
+    const Vec2 a = polygon[order[k]], b = polygon[(order[k] + 1) % n];
+    if (!(distance(a, b) > 0)) break;
+    for (double step = std::min(reach, 0.25 * distance(a, b)); step > 1e-6 * reach; step *= 0.25) {
+      const Vec2 p = 0.5 * (a + b) + step * perp(normalized(b - a));
+      if (point_in_polygon(polygon, p) && distance_to_polyline(p, polygon, true) > 0.5 * step) return p;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -133,6 +153,40 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
   }
   if (std::abs(total - face.area) > 1e-9 * face.area) {
     problem("blocks add up to " + std::to_string(total) + ", the face is " + std::to_string(face.area));
+  }
+  // No two blocks overlap: their outlines never cross by more than the
+  // tolerance (two splits may end on one boundary point a few 1e-8 of the
+  // size apart), and a point just inside each block lies in no other (one
+  // simple polygon inside another crosses nothing). With the areas adding
+  // up, the blocks tile the face.
+  std::vector<Box> boxes;
+  for (const Block& block : d.blocks) {
+    Box box{block.outline.front(), block.outline.front()};
+    for (const Vec2 p : block.outline)
+      box = {{std::min(box.min.x, p.x), std::min(box.min.y, p.y)},
+             {std::max(box.max.x, p.x), std::max(box.max.y, p.y)}};
+    boxes.push_back(box);
+  }
+  const auto boxes_meet = [&](std::size_t a, std::size_t b) {
+    return boxes[a].min.x <= boxes[b].max.x + tol && boxes[b].min.x <= boxes[a].max.x + tol &&
+           boxes[a].min.y <= boxes[b].max.y + tol && boxes[b].min.y <= boxes[a].max.y + tol;
+  };
+  for (std::size_t a = 0; a < d.blocks.size(); ++a) {
+    const auto& oa = d.blocks[a].outline;
+    const std::optional<Vec2> inner = point_just_inside(oa, 1e-4 * face.size);
+    if (!inner) problem("block " + std::to_string(a) + " has no point inside it near its outline");
+    for (std::size_t b = 0; b < d.blocks.size(); ++b) {
+      if (b == a || !boxes_meet(a, b)) continue;
+      const auto& ob = d.blocks[b].outline;
+      if (inner && point_in_polygon(ob, *inner) && distance_to_polyline(*inner, ob, true) > tol)
+        problem("block " + std::to_string(a) + " lies in block " + std::to_string(b));
+      if (b < a) continue;
+      bool crossing = false;
+      for (std::size_t i = 0; i < oa.size() && !crossing; ++i)
+        for (std::size_t j = 0; j < ob.size() && !crossing; ++j)
+          crossing = cross_properly(oa[i], oa[(i + 1) % oa.size()], ob[j], ob[(j + 1) % ob.size()], tol);
+      if (crossing) problem("blocks " + std::to_string(a) + " and " + std::to_string(b) + " cross");
+    }
   }
   // Every floating singularity in exactly one block, inside its outline.
   for (std::size_t s = 0; s < d.singularities.size(); ++s) {

@@ -54,6 +54,31 @@ TEST(Decomposition, SquarePlateWithHoleGetsFourPentagonsSplitAtTheSideMiddles) {
   }
 }
 
+// The tiling check itself: it finds a block laid over its neighbour (outlines
+// crossing), a block inside another, and blocks that leave a gap.
+TEST(Decomposition, TilingCheckFindsOverlapsAndGaps) {
+  const FaceModel f = face({polygon({{-2, -2}, {2, -2}, {2, 2}, {-2, 2}}), {full_circle({0, 0}, 0.8, -1)}});
+  const Result r = run(f);
+  ASSERT_TRUE(test::decomposition_problems(f, r.flow, r.d).empty());
+  const auto has = [](const std::vector<std::string>& problems, const std::string& what) {
+    return std::any_of(problems.begin(), problems.end(),
+                       [&](const std::string& p) { return p.find(what) != std::string::npos; });
+  };
+  Decomposition moved = r.d;  // block 0 pushed a tenth across the face
+  for (Vec2& p : moved.blocks[0].outline) p = p + Vec2{0.1, 0.1};
+  EXPECT_TRUE(has(test::decomposition_problems(f, r.flow, moved), "cross"));
+  Decomposition nested = r.d;  // a small copy of block 0 inside it, block 1 dropped
+  Block inner = nested.blocks[0];
+  Vec2 centre{0, 0};
+  for (const Vec2 p : inner.outline) centre = centre + p * (1.0 / inner.outline.size());
+  for (Vec2& p : inner.outline) p = centre + 0.2 * (p - centre);
+  inner.area *= 0.04;
+  nested.blocks[1] = inner;
+  const auto nested_problems = test::decomposition_problems(f, r.flow, nested);
+  EXPECT_TRUE(has(nested_problems, "lies in block")) << ::testing::PrintToString(nested_problems);
+  EXPECT_TRUE(has(nested_problems, "blocks add up to"));
+}
+
 // A T-shape has no singularity: one submapped block with two reflex
 // corners. Asked to split at every concave corner, each reflex corner gets
 // a split along both arms of its cross (the two arms across the stem's top
