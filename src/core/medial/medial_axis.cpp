@@ -38,9 +38,10 @@ constexpr double kNearlyFlat = 5 * kPi / 6;
 constexpr double kPointSpacing = 1e-2;
 
 // Adds b unless a place within tolerance of it is there already.
-void add_distinct(std::vector<BoundaryPlace>& places, const BoundaryPlace& b, double tolerance) {
+void add_distinct(const BoundaryIndex& index, std::vector<BoundaryPlace>& places, const BoundaryPlace& b,
+                  double tolerance) {
   for (const auto& q : places)
-    if (same_place(q, b, tolerance)) return;
+    if (same_place(index, q, b, tolerance)) return;
   places.push_back(b);
 }
 
@@ -122,9 +123,9 @@ class Builder {
       const VoronoiEdge& e = graph_.edges[i];
       const Vec2 m = 0.5 * (graph_.vertices[e.from].p + graph_.vertices[e.to].p);
       const BoundaryPlace a = place_of(e.left, m), b = place_of(e.right, m);
-      if (same_place(a, b, same)) continue;
+      if (same_place(index_, a, b, same)) continue;
       const Bisected exact = bisect(index_, m, a, b);
-      if (exact.converged && !same_place(exact.a, exact.b, same)) kept_.push_back(static_cast<int>(i));
+      if (exact.converged && !same_place(index_, exact.a, exact.b, same)) kept_.push_back(static_cast<int>(i));
     }
   }
 
@@ -475,8 +476,8 @@ class Builder {
   std::vector<BoundaryPlace> touches_at(int node, Vec2 p) const {
     std::vector<BoundaryPlace> places;
     for (int e : nodes_[node].edges) {
-      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
-      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
+      add_distinct(index_, places, place_of(graph_.edges[e].left, p), kSamePlace * size());
+      add_distinct(index_, places, place_of(graph_.edges[e].right, p), kSamePlace * size());
     }
     return places;
   }
@@ -500,12 +501,13 @@ class Builder {
   // pairs of Voronoi vertices that may pair the places up wrongly).
   std::vector<BoundaryPlace> junction_candidates(int node, Vec2 p) const {
     std::vector<BoundaryPlace> places;
-    for (const Site& site : junction_sites(node, p)) add_distinct(places, place_of(site, p), kSamePlace * size());
+    for (const Site& site : junction_sites(node, p))
+      add_distinct(index_, places, place_of(site, p), kSamePlace * size());
     // The sites of the node's own edges (a branch joined to a finite contact
     // brings sites no Voronoi vertex here has).
     for (int e : nodes_[node].edges) {
-      add_distinct(places, place_of(graph_.edges[e].left, p), kSamePlace * size());
-      add_distinct(places, place_of(graph_.edges[e].right, p), kSamePlace * size());
+      add_distinct(index_, places, place_of(graph_.edges[e].left, p), kSamePlace * size());
+      add_distinct(index_, places, place_of(graph_.edges[e].right, p), kSamePlace * size());
     }
     return places;
   }
@@ -572,7 +574,7 @@ class Builder {
       // ends, and this has long stood for the junction there.
       const auto& e = exact.places;
       const auto one = [&](const BoundaryPlace& a, const BoundaryPlace& b) {
-        return same_place(a, b, kSamePlace * size()) && !at_reflex_corner(a);
+        return same_place(index_, a, b, kSamePlace * size()) && !at_reflex_corner(a);
       };
       if (one(e[0], e[1]) || one(e[0], e[2]) || one(e[1], e[2])) return;
       if (avoid && distance(exact.p, avoid->p) <= 1e-9 * size()) return;
@@ -587,7 +589,7 @@ class Builder {
       }
       // A foot held in its window is a place no candidate's search reaches.
       if (held) {
-        for (const BoundaryPlace& at : exact.places) add_distinct(touches, at, kSamePlace * size());
+        for (const BoundaryPlace& at : exact.places) add_distinct(index_, touches, at, kSamePlace * size());
       }
       best = score;
       v.p = exact.p;
@@ -733,7 +735,7 @@ class Builder {
           if (!touches_site(va.p, va.r, site) || !touches_site(vb.p, vb.r, site)) continue;
           const BoundaryPlace place = place_of(site, va.p);
           if (std::any_of(shared_places.begin(), shared_places.end(),
-                          [&](const BoundaryPlace& q) { return same_place(q, place, kSamePlace * size()); }))
+                          [&](const BoundaryPlace& q) { return same_place(index_, q, place, kSamePlace * size()); }))
             continue;
           shared.push_back(site);
           shared_places.push_back(place);
@@ -907,7 +909,7 @@ class Builder {
     std::vector<BoundaryPlace> feet;
     for (BoundaryPlace foot : touches) {
       foot.corner_itself = false;
-      add_distinct(feet, nearest_on_run(index_, foot, p), kSamePlace * size());
+      add_distinct(index_, feet, nearest_on_run(index_, foot, p), kSamePlace * size());
     }
     std::optional<MedialVertex> best;
     bool best_empty = false;
@@ -920,8 +922,8 @@ class Builder {
       std::vector<BoundaryPlace> apart = feet;
       if (from != node) {
         apart.clear();
-        add_distinct(apart, place_of(graph_.edges[e].left, q), kSamePlace * size());
-        add_distinct(apart, place_of(graph_.edges[e].right, q), kSamePlace * size());
+        add_distinct(index_, apart, place_of(graph_.edges[e].left, q), kSamePlace * size());
+        add_distinct(index_, apart, place_of(graph_.edges[e].right, q), kSamePlace * size());
       }
       if (apart.size() == 2 && apart[0].loop == apart[1].loop) {
         const Vec2 in = q - node_point(back);
@@ -1264,7 +1266,8 @@ namespace {
 
 // The axis of a face with h holes is one connected graph with h independent
 // cycles (a loop with no vertex counts as a vertex of its own); "" if so.
-std::string topology_problem(const MedialAxis& axis, int holes) {
+std::string topology_problem(const MedialAxis& axis, const FaceModel& face) {
+  const int holes = face.holes();
   UnionFind sets(axis.vertices.size());
   int vertices = static_cast<int>(axis.vertices.size()), components = vertices;
   for (const MedialEdge& e : axis.edges) {
@@ -1279,6 +1282,19 @@ std::string topology_problem(const MedialAxis& axis, int holes) {
   if (components != 1) return "the axis falls into " + std::to_string(components) + " pieces";
   if (cycles != holes)
     return "the axis has " + std::to_string(cycles) + " cycles for " + std::to_string(holes) + " holes";
+  // Every convex corner ends a branch of the axis: one connected graph that
+  // misses a corner's flare misses the part of the face round it.
+  for (const Corner& c : face.corners) {
+    if (c.angle >= kPi) continue;
+    const bool flare = std::any_of(axis.vertices.begin(), axis.vertices.end(), [&](const MedialVertex& v) {
+      return v.kind == MedialVertexKind::Flare && distance(v.p, c.position) <= 1e-6 * face.size + face.tolerance;
+    });
+    if (!flare) {
+      std::ostringstream where;
+      where << "no branch of the axis ends in the convex corner at (" << c.position.x << ", " << c.position.y << ")";
+      return where.str();
+    }
+  }
   return "";
 }
 
@@ -1355,9 +1371,9 @@ void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& bound
       const bool left_nearer = distance(q.left.point, global.point) < distance(q.right.point, global.point);
       for (const BoundaryPlace& foot : {left_nearer ? q.right : q.left, left_nearer ? q.left : q.right}) {
         if (worst <= tolerance) break;
-        if (same_place(foot, global, same)) continue;
+        if (same_place(index, foot, global, same)) continue;
         const Bisected b = bisect(index, q.p, global, foot);
-        if (!b.converged || same_place(b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
+        if (!b.converged || same_place(index, b.a, b.b, same) || distance(b.p, q.p) > kPointSpacing * index.face().size)
           continue;
         const BoundaryPlace at = boundary.nearest(b.p);
         MedialPoint moved{b.p, b.r, b.a, b.b};
@@ -1387,7 +1403,7 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
   MedialAxis best = Builder(face, 1.0).build();
   std::vector<Vec2> best_nearest = nearest_points(boundary, best);
   double best_violation = violation(best_nearest, best);
-  std::string best_problem = topology_problem(best, face.holes());  // empty: the right topology
+  std::string best_problem = topology_problem(best, face);  // empty: the right topology
   double fineness = 1.0;
   // Finer chords where a point is off or the axis has a cycle or a piece too
   // many; an axis of the right topology outranks a more exact one.
@@ -1396,7 +1412,7 @@ MedialAxis compute_medial_axis(const FaceModel& face) {
     MedialAxis finer = Builder(face, fineness).build();
     std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
     const double finer_violation = violation(finer_nearest, finer);
-    std::string finer_problem = topology_problem(finer, face.holes());
+    std::string finer_problem = topology_problem(finer, face);
     const bool finer_whole = finer_problem.empty(), best_whole = best_problem.empty();
     if (finer_whole > best_whole || (finer_whole == best_whole && finer_violation < best_violation)) {
       best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;

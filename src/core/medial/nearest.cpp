@@ -207,8 +207,21 @@ BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& st
   return found.corner >= 0 && index.is_reflex(found.loop, found.corner) ? nearest_from_corner(index, found, m) : found;
 }
 
-bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance) {
-  return a.loop == b.loop && distance(a.point, b.point) <= tolerance;
+bool same_place(const BoundaryIndex& index, const BoundaryPlace& a, const BoundaryPlace& b, double tolerance) {
+  if (a.loop != b.loop || distance(a.point, b.point) > tolerance) return false;
+  if (a.edge == b.edge) return true;
+  // Along the loop from one to the other, the edges between them by their
+  // chords (no longer than the edges), either way round.
+  const std::vector<BoundaryEdge>& edges = index.face().loops[a.loop].edges;
+  const int n = static_cast<int>(edges.size());
+  const double reach = 4 * tolerance;
+  const auto along = [&](const BoundaryPlace& from, const BoundaryPlace& to) {
+    double walked = distance(from.point, edges[from.edge].end);
+    for (int e = (from.edge + 1) % n; e != to.edge && walked <= reach; e = (e + 1) % n)
+      walked += distance(edges[e].start, edges[e].end);
+    return walked + distance(edges[to.edge].start, to.point);
+  };
+  return std::min(along(a, b), along(b, a)) <= reach;
 }
 
 namespace {

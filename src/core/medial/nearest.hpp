@@ -47,8 +47,10 @@ class BoundaryIndex {
 // from a place that is a corner itself it may leave along either edge.
 BoundaryPlace nearest_on_run(const BoundaryIndex& index, const BoundaryPlace& start, Vec2 m);
 
-// True if a and b are the same point of one smooth run (within tolerance).
-bool same_place(const BoundaryPlace& a, const BoundaryPlace& b, double tolerance);
+// True if a and b are the same point of the boundary: within tolerance of
+// each other and within a few times that along their loop, so that the two
+// sides of a neck narrower than the tolerance stay two places.
+bool same_place(const BoundaryIndex& index, const BoundaryPlace& a, const BoundaryPlace& b, double tolerance);
 
 struct Bisected {
   Vec2 p;
