@@ -22,12 +22,21 @@ std::vector<SingularityGroup> group_singularities(const std::vector<Singularity>
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t j = i + 1; j < count; ++j) {
-      const Singularity &a = singularities[i], &b = singularities[j];
+  // Pairs closer than their reach, found along the singularities sorted by
+  // x: no pair further apart in x than the first one's own reach can be.
+  // The groups (connected sets) do not depend on the order of the unions.
+  std::vector<std::size_t> by_x(count);
+  std::iota(by_x.begin(), by_x.end(), 0);
+  std::sort(by_x.begin(), by_x.end(),
+            [&](std::size_t a, std::size_t b) { return singularities[a].p.x < singularities[b].p.x; });
+  for (std::size_t ii = 0; ii < count; ++ii) {
+    const Singularity& a = singularities[by_x[ii]];
+    const double widest = tolerance.mesh_size > 0.0 ? tolerance.mesh_size : tolerance.radius_factor * a.r;
+    for (std::size_t jj = ii + 1; jj < count && singularities[by_x[jj]].p.x - a.p.x < widest; ++jj) {
+      const Singularity& b = singularities[by_x[jj]];
       const double reach =
           tolerance.mesh_size > 0.0 ? tolerance.mesh_size : tolerance.radius_factor * std::min(a.r, b.r);
-      if (distance(a.p, b.p) < reach) parent[root(i)] = root(j);
+      if (distance(a.p, b.p) < reach) parent[root(by_x[ii])] = root(by_x[jj]);
     }
   }
   std::map<std::size_t, SingularityGroup> groups;  // keyed by root, in order of first member
