@@ -749,10 +749,16 @@ class Decomposer {
       const auto& members = units_[u].members;
       for (std::size_t i = 0; i < members.size(); ++i) {
         unit_of_[members[i]] = static_cast<int>(u);
-        for (std::size_t j = i + 1; j < members.size(); ++j)
-          member_pairs_.emplace_back(flow_.singularities[members[i]].p, flow_.singularities[members[j]].p);
+        for (std::size_t j = i + 1; j < members.size(); ++j) {
+          const Vec2 a = flow_.singularities[members[i]].p, b = flow_.singularities[members[j]].p;
+          member_pairs_.push_back({a, b, distance(a, b) + tol_});
+        }
       }
     }
+    std::sort(member_pairs_.begin(), member_pairs_.end(),
+              [](const MemberPair& x, const MemberPair& y) { return x.a.x < y.a.x; });
+    widest_pair_ = 0.0;
+    for (const MemberPair& pair : member_pairs_) widest_pair_ = std::max(widest_pair_, pair.reach);
     vertex_member_.assign(axis_.vertices.size(), -1);
     for (std::size_t m = 0; m < locations_.size(); ++m) {
       if (locations_[m].vertex >= 0) vertex_member_[locations_[m].vertex] = static_cast<int>(m);
@@ -760,10 +766,15 @@ class Decomposer {
   }
 
   // Whether a cut at p could part the members of a group: p lies between two of them.
+  // Only pairs whose first member lies within the widest reach of p in x
+  // can hold it (the pairs sorted by that x; the window a hair wider so
+  // that rounding never drops one).
   bool inside_a_group(Vec2 p) const {
-    for (const auto& [a, b] : member_pairs_) {
-      const double reach = distance(a, b) + tol_;
-      if (distance(p, a) <= reach && distance(p, b) <= reach) return true;
+    const double window = widest_pair_ * (1.0 + 1e-9) + tol_;
+    auto it = std::lower_bound(member_pairs_.begin(), member_pairs_.end(), p.x - window,
+                               [](const MemberPair& pair, double x) { return pair.a.x < x; });
+    for (; it != member_pairs_.end() && it->a.x <= p.x + window; ++it) {
+      if (distance(p, it->a) <= it->reach && distance(p, it->b) <= it->reach) return true;
     }
     return false;
   }
@@ -2633,14 +2644,19 @@ class Decomposer {
   std::vector<Cut> cuts_;
   long version_ = 0;  // bumped by every change of cuts_ or of units_' fixed flags
   mutable long marks_version_ = -1;
-  mutable std::vector<std::vector<Mark>> marks_;     // see edge_marks
-  std::set<int> vertex_cuts_;                        // vertices with a vertex cut
-  std::vector<std::pair<Vec2, Vec2>> member_pairs_;  // positions of two members of one group
-  std::vector<int> vertex_member_;                   // per medial vertex, the flow singularity there or -1
-  std::set<int> taken_apart_;                        // first members of groups taken apart
-  std::map<int, int> boundary_fixed_;                // finite-contact vertex -> convex corners put on its arc
-  std::vector<int> split_owner_;                     // the cut each split belongs to
-  std::set<std::pair<int, long>> withdrawn_;         // (edge, position x 1e6) of withdrawn cuts, never placed again
+  mutable std::vector<std::vector<Mark>> marks_;  // see edge_marks
+  std::set<int> vertex_cuts_;                     // vertices with a vertex cut
+  struct MemberPair {  // positions of two members of one group, and how far a point between them may be
+    Vec2 a, b;
+    double reach;
+  };
+  std::vector<MemberPair> member_pairs_;      // sorted by a.x
+  double widest_pair_ = 0.0;                  // the largest reach
+  std::vector<int> vertex_member_;            // per medial vertex, the flow singularity there or -1
+  std::set<int> taken_apart_;                 // first members of groups taken apart
+  std::map<int, int> boundary_fixed_;         // finite-contact vertex -> convex corners put on its arc
+  std::vector<int> split_owner_;              // the cut each split belongs to
+  std::set<std::pair<int, long>> withdrawn_;  // (edge, position x 1e6) of withdrawn cuts, never placed again
   std::vector<Split> splits_;
   std::vector<std::string> notes_;
 };
