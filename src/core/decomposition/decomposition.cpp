@@ -991,14 +991,13 @@ class Decomposer {
     cuts_.push_back(c);
     ++version_;
     if (!marks_current) return;
-    drop_cut_concave_marks(c.edge);
     mark_edge_cut(c);
     marks_version_ = version_;
   }
 
   // Edge marks kept up to date: the concave corners' splits that cuts on
   // edge e now make are no feature; a new cut's mark goes after those at its
-  // place (the order of edge_marks()'s stable sort).
+  // place (the order of edge_marks()'s stable sort), and the splits it makes go.
   void drop_cut_concave_marks(int e) {
     std::vector<Mark>& list = marks_[e];
     list.erase(
@@ -1007,6 +1006,7 @@ class Decomposer {
         list.end());
   }
   void mark_edge_cut(const Cut& c) {
+    drop_cut_concave_marks(c.edge);
     std::vector<Mark>& list = marks_[c.edge];
     const auto after = std::upper_bound(list.begin(), list.end(), c.s, [](double s, const Mark& m) { return s < m.s; });
     list.insert(after, {c.s, -1, -1, true});
@@ -1205,10 +1205,7 @@ class Decomposer {
         continue;
       }
       cuts_.push_back(c);
-      if (marks_current) {
-        drop_cut_concave_marks(c.edge);
-        mark_edge_cut(c);
-      }
+      if (marks_current) mark_edge_cut(c);
     }
     if (marks_current) {  // the unit no longer floats: its members are no feature
       for (int m : units_[u].members) {
@@ -1302,7 +1299,7 @@ class Decomposer {
     marks_version_ = version_;
     std::vector<std::vector<Mark>>& marks = marks_;
     marks.resize(axis_.edges.size());
-    for (auto& list : marks) list.clear();  // keeping their memory: rebuilt after every cut
+    for (auto& list : marks) list.clear();  // keeping their memory
     for (std::size_t m = 0; m < locations_.size(); ++m) {
       if (locations_[m].edge >= 0 && unit_of_[m] >= 0 && floating(unit_of_[m]))
         marks[locations_[m].edge].push_back({locations_[m].s, unit_of_[m]});
@@ -1493,12 +1490,14 @@ class Decomposer {
   bool reaches_floating_unit(int e0, double s0, int dir0, bool only_unfixable) const {
     const auto counts = [&](int unit) { return unit >= 0 && (!only_unfixable || !fixable(unit)); };
     const auto& marks = edge_marks();
-    std::set<std::tuple<int, int, double>> visited;
+    std::vector<std::tuple<int, int, double>> visited;  // a few: searched, not a set
     std::vector<std::tuple<int, double, int>> todo{{e0, s0, dir0}};
     while (!todo.empty()) {
       const auto [e, s, dir] = todo.back();
       todo.pop_back();
-      if (!visited.insert({e, dir, s}).second) continue;
+      const std::tuple<int, int, double> here{e, dir, s};
+      if (std::find(visited.begin(), visited.end(), here) != visited.end()) continue;
+      visited.push_back(here);
       bool stopped = false;
       for (const Mark& m : marks[e]) {
         const bool beyond = dir > 0 ? m.s > s + 1e-12 : m.s < s - 1e-12;
