@@ -160,13 +160,7 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
   // simple polygon inside another crosses nothing). With the areas adding
   // up, the blocks tile the face.
   std::vector<Box> boxes;
-  for (const Block& block : d.blocks) {
-    Box box{block.outline.front(), block.outline.front()};
-    for (const Vec2 p : block.outline)
-      box = {{std::min(box.min.x, p.x), std::min(box.min.y, p.y)},
-             {std::max(box.max.x, p.x), std::max(box.max.y, p.y)}};
-    boxes.push_back(box);
-  }
+  for (const Block& block : d.blocks) boxes.push_back(bounding_box(block.outline));
   const auto boxes_meet = [&](std::size_t a, std::size_t b) {
     return boxes[a].min.x <= boxes[b].max.x + tol && boxes[b].min.x <= boxes[a].max.x + tol &&
            boxes[a].min.y <= boxes[b].max.y + tol && boxes[b].min.y <= boxes[a].max.y + tol;

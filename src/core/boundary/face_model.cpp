@@ -421,8 +421,12 @@ std::vector<Vec2> sample_loop(const Loop& loop, double chord_tolerance) {
 }
 
 Box bounding_box(const FaceModel& face) {
+  return bounding_box(sample_loop(face.loops.front(), 1e-3 * face.size));
+}
+
+Box bounding_box(const std::vector<Vec2>& points) {
   Box box{{1e300, 1e300}, {-1e300, -1e300}};
-  for (const Vec2& p : sample_loop(face.loops.front(), 1e-3 * face.size)) {
+  for (const Vec2& p : points) {
     box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
     box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
   }

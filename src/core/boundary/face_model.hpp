@@ -124,6 +124,8 @@ struct Box {
   Vec2 max;
 };
 Box bounding_box(const FaceModel& face);
+// The smallest box round the points (min above max if there are none).
+Box bounding_box(const std::vector<Vec2>& points);
 
 std::array<double, 3> to_3d(const Frame& frame, Vec2 p);
 

@@ -488,11 +488,7 @@ void find_facing_sides(Block& b) {
   std::vector<Box> boxes(m);
   for (int i = 0; i < m; ++i) {
     Box& box = boxes[i];
-    box.min = box.max = lines[i].empty() ? Vec2{0, 0} : lines[i].front();
-    for (const Vec2 p : lines[i]) {
-      box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
-      box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
-    }
+    box = lines[i].empty() ? Box{{0, 0}, {0, 0}} : bounding_box(lines[i]);
     const double margin = 1e-9 * (1.0 + std::abs(box.min.x) + std::abs(box.min.y) + distance(box.min, box.max));
     box.min = box.min - Vec2{margin, margin};
     box.max = box.max + Vec2{margin, margin};

@@ -13,11 +13,7 @@ const char* const kBlockFills[8] = {"#c6dbef", "#c7e9c0", "#fdd0a2", "#dadaeb",
 
 // A point well inside the outline for the label: the best of a grid.
 Vec2 label_point(const std::vector<Vec2>& outline) {
-  Box box{outline.front(), outline.front()};
-  for (const Vec2& p : outline) {
-    box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
-    box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
-  }
+  const Box box = bounding_box(outline);
   Vec2 best = outline.front();
   double clearance = -1.0;
   const int n = 24;

@@ -103,13 +103,8 @@ SvgCanvas draw_merged_mesh(const MergedMesh& mesh, const std::vector<std::vector
   across = unit({across[0] - along * view[0], across[1] - along * view[1], across[2] - along * view[2]});
   const Point3 up = cross3(view, across);
   std::vector<Vec2> at;
-  Box box{{1e300, 1e300}, {-1e300, -1e300}};
-  for (const Point3& p : mesh.nodes) {
-    at.push_back({dot3(p, across), dot3(p, up)});
-    box.min = {std::min(box.min.x, at.back().x), std::min(box.min.y, at.back().y)};
-    box.max = {std::max(box.max.x, at.back().x), std::max(box.max.y, at.back().y)};
-  }
-  if (at.empty()) box = {{0, 0}, {1, 1}};
+  for (const Point3& p : mesh.nodes) at.push_back({dot3(p, across), dot3(p, up)});
+  const Box box = at.empty() ? Box{{0, 0}, {1, 1}} : bounding_box(at);
   SvgCanvas canvas(box, width);
   // The elements furthest from the viewer first, so nearer faces cover them.
   std::vector<double> depth;
