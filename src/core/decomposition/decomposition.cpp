@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "decomposition/facing_sides.hpp"
+#include "decomposition/orthogonal_join.hpp"
 #include "geometry/polygon.hpp"
 #include "medial/nearest.hpp"
 
@@ -2574,7 +2575,9 @@ const char* split_reason_name(SplitReason reason) {
 
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options) {
-  return Decomposer(face, axis, flow, options).run();
+  Decomposition d = Decomposer(face, axis, flow, options).run();
+  if (options.orthogonal_joins) join_splits_orthogonally(face, d);
+  return d;
 }
 
 }  // namespace mm

@@ -26,6 +26,9 @@ struct DecompositionOptions {
   // degrees off its logical direction, type the corners again following the
   // outline's turning (else the lattice folds; off: a fallback).
   bool submap_corners_follow_turning = true;
+  // Where a split ends at a concave corner off its cross, beside a split
+  // along the cross, end it on that split at a right angle (Fig. 18).
+  bool orthogonal_joins = true;
 };
 
 enum class SplitReason {

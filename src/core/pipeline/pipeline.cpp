@@ -117,6 +117,7 @@ Decomposition decompose_flow(const FlowOfFace& f, const PipelineOptions& options
   decomposition.tolerance = options.tolerance;
   decomposition.split_concave_corners = options.split_concave_corners;
   decomposition.submap_corners_follow_turning = options.submap_corners_follow_turning;
+  decomposition.orthogonal_joins = options.orthogonal_joins;
   Decomposition result = decompose(f.face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;

@@ -15,6 +15,7 @@ struct PipelineOptions {
   MergeTolerance tolerance;                   // factor 0.75 of the medial radius unless told otherwise
   bool split_concave_corners = false;         // DecompositionOptions::split_concave_corners
   bool submap_corners_follow_turning = true;  // DecompositionOptions::submap_corners_follow_turning
+  bool orthogonal_joins = true;               // DecompositionOptions::orthogonal_joins
 };
 
 struct MeshedFace {
