@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "decomposition/block_ring.hpp"
 #include "decomposition/facing_sides.hpp"
 #include "decomposition/orthogonal_join.hpp"
 #include "geometry/polygon.hpp"
@@ -1983,7 +1984,7 @@ class Decomposer {
   }
 
   bool withdraw_reflex_splits(const Outline& o) {
-    const Flat flat = flatten(o);
+    const BlockRing flat = flatten(o);
     std::set<int> bad;
     const std::size_t count = flat.pieces.size();
     for (std::size_t i = 0; i < count; ++i) {
@@ -2111,11 +2112,6 @@ class Decomposer {
   // The corner type at the start of every piece of the outline (2: none).
   std::vector<int> corner_types(const Outline& o) const { return flatten(o).start_type; }
 
-  struct Flat {  // the outline as pieces with the corner type at each piece's start
-    std::vector<OutlinePiece> pieces;
-    std::vector<int> start_type;
-  };
-
   // Position along a loop: edge index plus the fraction of its parameter range.
   double loop_position(const BoundaryPlace& place) const {
     const Loop& loop = face_.loops[place.loop];
@@ -2222,8 +2218,9 @@ class Decomposer {
 
   // The outline's pieces and corner types; sampled: with points along the
   // curved pieces (for the blocks handed out), else only their ends.
-  Flat flatten(const Outline& o, bool sampled = false) const {
-    Flat flat;
+  // The outline as pieces with the corner type at each piece's start.
+  BlockRing flatten(const Outline& o, bool sampled = false) const {
+    BlockRing flat;
     // Per piece: the arm of the cross it leaves its start along and arrives
     // at its end along, where that end is a split's end on the boundary; a
     // boundary piece leaves along arm 0 and arrives along arm nc (2 if smooth).
@@ -2497,27 +2494,14 @@ class Decomposer {
   }
 
   Block make_block(const Outline& o) const {
-    Flat flat = flatten(o, true);
+    const BlockRing flat = flatten(o, true);
     Block b;
+    set_outline(b, flat, tol_);
     const std::size_t count = flat.pieces.size();
-    std::size_t first = 0;
-    while (first < count && flat.start_type[first] == 2) ++first;
-    if (first == count) first = 0;
     const Vec2 ref = flat.pieces.empty() ? Vec2{} : flat.pieces.front().points.front();
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t i = (first + k) % count;
-      const OutlinePiece& piece = flat.pieces[i];
-      if (flat.start_type[i] != 2) {
-        b.corners.push_back({piece.points.front(), flat.start_type[i]});
-        b.sides.emplace_back();
-      }
-      if (b.sides.empty()) b.sides.emplace_back();
-      b.sides.back().pieces.push_back(piece);
-      for (std::size_t j = 0; j + 1 < piece.points.size(); ++j) {
-        if (b.outline.empty() || distance(b.outline.back(), piece.points[j]) > tol_)
-          b.outline.push_back(piece.points[j]);
-      }
+    for (std::size_t i = 0; i < count; ++i) {
       // Consecutive pieces meet to the sliver length, not exactly: the gap's chord counts too.
+      const OutlinePiece& piece = flat.pieces[i];
       const Vec2 previous_end = flat.pieces[(i + count - 1) % count].points.back();
       b.area += 0.5 * cross(previous_end - ref, piece.points.front() - previous_end) + piece_area(piece, ref);
     }

@@ -3,59 +3,24 @@
 #include <cmath>
 #include <optional>
 
+#include "decomposition/block_ring.hpp"
 #include "decomposition/facing_sides.hpp"
 #include "geometry/polygon.hpp"
 
 namespace mm {
 namespace {
 
-// A block's outline as one ring of pieces, each with the corner type at its
-// start (2 where no corner).
-struct Ring {
-  std::vector<OutlinePiece> pieces;
-  std::vector<int> start_type;
-};
-
-Ring ring_of(const Block& b) {
-  Ring r;
-  for (std::size_t s = 0; s < b.sides.size(); ++s) {
-    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
-      r.pieces.push_back(b.sides[s].pieces[k]);
-      r.start_type.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
-    }
-  }
-  return r;
-}
-
-// Corners, sides and outline again from the ring (area and kind stay).
-void rebuild(Block& b, const Ring& r, double tol) {
-  b.corners.clear();
-  b.sides.clear();
-  b.outline.clear();
-  const std::size_t count = r.pieces.size();
-  std::size_t first = 0;
-  while (first < count && r.start_type[first] == 2) ++first;
-  if (first == count) first = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t i = (first + k) % count;
-    const OutlinePiece& piece = r.pieces[i];
-    if (r.start_type[i] != 2) {
-      b.corners.push_back({piece.points.front(), r.start_type[i]});
-      b.sides.emplace_back();
-    }
-    if (b.sides.empty()) b.sides.emplace_back();
-    b.sides.back().pieces.push_back(piece);
-    for (std::size_t j = 0; j + 1 < piece.points.size(); ++j) {
-      if (b.outline.empty() || distance(b.outline.back(), piece.points[j]) > tol) b.outline.push_back(piece.points[j]);
-    }
-  }
+// Corners, sides and outline again from the ring (area and kind stay), and
+// the sides a submapped block's lattice must keep apart.
+void rebuild(Block& b, const BlockRing& r, double tol) {
+  set_outline(b, r, tol);
   b.facing.clear();
   b.facing_outside.clear();
   if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
 }
 
 // The piece of split `split` running from a to b in the ring, or -1.
-int piece_index(const Ring& r, int split, Vec2 a, Vec2 b, double tol) {
+int piece_index(const BlockRing& r, int split, Vec2 a, Vec2 b, double tol) {
   for (std::size_t i = 0; i < r.pieces.size(); ++i) {
     const OutlinePiece& p = r.pieces[i];
     if (p.split == split && p.points.size() == 2 && distance(p.points.front(), a) <= tol &&
@@ -139,7 +104,7 @@ struct RingCorner {
   int type = 2;
 };
 
-RingCorner ring_corner(const Ring& r, Vec2 v, double tol) {
+RingCorner ring_corner(const BlockRing& r, Vec2 v, double tol) {
   const std::size_t n = r.pieces.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (distance(r.pieces[i].points.front(), v) > tol) continue;
@@ -164,7 +129,7 @@ struct Join {
 };
 
 // The join for split s at its end `at_back`, if one is allowed.
-std::optional<Join> find_join(const FaceModel& face, const Decomposition& d, const std::vector<Ring>& rings, int s,
+std::optional<Join> find_join(const FaceModel& face, const Decomposition& d, const std::vector<BlockRing>& rings, int s,
                               bool at_back, double tol) {
   const std::vector<Vec2>& line = d.splits[s].polyline;
   if (line.size() != 3) return std::nullopt;
@@ -176,7 +141,7 @@ std::optional<Join> find_join(const FaceModel& face, const Decomposition& d, con
   // Z: the block whose outline turns at B, with one element there, from
   // this split straight onto a split along the cross (either way round).
   for (std::size_t zi = 0; zi < rings.size() && j.z < 0; ++zi) {
-    const Ring& r = rings[zi];
+    const BlockRing& r = rings[zi];
     const std::size_t n = r.pieces.size();
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t next = (i + 1) % n;
@@ -219,7 +184,7 @@ std::optional<Join> find_join(const FaceModel& face, const Decomposition& d, con
   if (j.y < 0 || j.w < 0 || j.y == j.w) return std::nullopt;
   // Y has one element at B too: with the triangle its outline runs straight
   // through B, and its corner moves to Q.
-  const Ring& y = rings[j.y];
+  const BlockRing& y = rings[j.y];
   const int leaving = piece_index(y, s, j.b, j.p, tol);
   const int arriving = piece_index(y, s, j.p, j.b, tol);
   const int at_b = leaving >= 0 ? leaving : (arriving + 1) % static_cast<int>(y.pieces.size());
@@ -251,7 +216,7 @@ void move_end(OutlinePiece& piece, Vec2 b, Vec2 q, double tol) {
     if (distance(p, b) <= tol) p = q;
 }
 
-void apply(Decomposition& d, std::vector<Ring>& rings, int s, bool at_back, const Join& j, double tol) {
+void apply(Decomposition& d, std::vector<BlockRing>& rings, int s, bool at_back, const Join& j, double tol) {
   std::vector<Vec2>& line = d.splits[s].polyline;
   (at_back ? line.back() : line.front()) = j.q;
   std::vector<Vec2>& other = d.splits[j.other].polyline;
@@ -266,7 +231,7 @@ void apply(Decomposition& d, std::vector<Ring>& rings, int s, bool at_back, cons
   };
 
   // Z: both pieces at B end at Q instead; the corner (type 1) goes with them.
-  Ring& z = rings[j.z];
+  BlockRing& z = rings[j.z];
   for (OutlinePiece& piece : z.pieces) {
     if ((piece.split == s &&
          (distance(piece.points.front(), j.p) <= tol || distance(piece.points.back(), j.p) <= tol)) ||
@@ -277,7 +242,7 @@ void apply(Decomposition& d, std::vector<Ring>& rings, int s, bool at_back, cons
 
   // Y: B is straight on now (its corner type 1 + the triangle's 1 = 2), a
   // corner of type 1 at Q between the other split and this one.
-  Ring& y = rings[j.y];
+  BlockRing& y = rings[j.y];
   if (const int i = piece_index(y, s, j.b, j.p, tol); i >= 0) {
     move_end(y.pieces[i], j.b, j.q, tol);
     y.start_type[i] = 1;
@@ -293,7 +258,7 @@ void apply(Decomposition& d, std::vector<Ring>& rings, int s, bool at_back, cons
   }
 
   // W: the other split's piece at B in two, straight on at Q.
-  Ring& w = rings[j.w];
+  BlockRing& w = rings[j.w];
   if (const int i = piece_index(w, j.other, j.b, j.m, tol); i >= 0) {
     w.pieces[i] = piece_qm(true);
     w.pieces.insert(w.pieces.begin() + i, piece_bq(true));
@@ -315,7 +280,7 @@ void apply(Decomposition& d, std::vector<Ring>& rings, int s, bool at_back, cons
 
 int join_splits_orthogonally(const FaceModel& face, Decomposition& d) {
   const double tol = 1e-7 * face.size;
-  std::vector<Ring> rings;
+  std::vector<BlockRing> rings;
   for (const Block& b : d.blocks) rings.push_back(ring_of(b));
   int joins = 0;
   for (std::size_t s = 0; s < d.splits.size(); ++s) {
