@@ -2248,6 +2248,11 @@ class Decomposer {
         }
         continue;
       }
+      // A fixed junction's radius whose touch the walk placed elsewhere than
+      // the cut did has no split: a failed block, not a piece of nothing.
+      if (it.split_a < 0 || it.split_b < 0)
+        throw SelfCheckFailure("decomposition: a split on a block's outline through (" + std::to_string(it.middle.x) +
+                               ", " + std::to_string(it.middle.y) + ") was never made");
       OutlinePiece first, second;
       first.split = it.split_a;
       first.reversed = it.reversed_a;
