@@ -462,6 +462,17 @@ class Decomposer {
     find_concave_points();
   }
 
+  // The process's blocks, then the orthogonal joins (Fig. 18) where they
+  // are made and every block passes its checks again after them.
+  Decomposition run() {
+    Decomposition d = run_process();
+    if (!options_.orthogonal_joins) return d;
+    Decomposition joined = d;
+    if (join_splits_orthogonally(face_, joined) == 0 || !passes_block_checks(joined, d)) return d;
+    return joined;
+  }
+
+ private:
   // The paper's process; should a block fail its self-check, the whole face
   // again with every singularity that can be fixed fixed (the paper's
   // always-possible decomposition into submappable regions).
@@ -469,7 +480,7 @@ class Decomposer {
   // touches where they stay on the edge's loop, then following the edge's
   // own wherever the junction's jump (better on star-shaped faces, worse
   // where touches move fast near curved ends); every result is checked.
-  Decomposition run() {
+  Decomposition run_process() {
     std::string first;
     for (const bool fix_all : {false, true}) {
       for (const bool strict : {false, true}) {
@@ -539,7 +550,6 @@ class Decomposer {
     }
   }
 
- private:
   // ---------------------------------------------------------------- set-up
 
   int point_count(int e) const { return static_cast<int>(axis_.edges[e].points.size()); }
@@ -2441,6 +2451,33 @@ class Decomposer {
     return true;
   }
 
+  // The checks finish() makes of every block, made again after the
+  // orthogonal joins reshaped some: pieces meeting, no split pieces
+  // crossing, counter-clockwise, corners closing up as before (`unjoined`,
+  // block for block), each singularity's members inside its block, and the
+  // areas adding up to the face's.
+  bool passes_block_checks(const Decomposition& d, const Decomposition& unjoined) const {
+    const auto turning = [](const Block& b) {
+      int sum = 0;
+      for (const BlockCorner& c : b.corners) sum += 2 - c.type;
+      return sum;
+    };
+    if (d.blocks.size() != unjoined.blocks.size()) return false;
+    double total = 0.0;
+    for (std::size_t i = 0; i < d.blocks.size(); ++i) {
+      const Block& b = d.blocks[i];
+      if (widest_joint(b) > 1e-5 * face_.size + 10 * face_.tolerance || splits_cross(b) || !(b.area > 0.0) ||
+          turning(b) != turning(unjoined.blocks[i]))
+        return false;
+      if (b.singularity >= 0) {
+        for (int m : d.singularities[b.singularity].members)
+          if (!holds(b.outline, flow_.singularities[m].p)) return false;
+      }
+      total += b.area;
+    }
+    return std::abs(total - face_.area) <= 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size;
+  }
+
   // Whether p lies inside a closed outline or on it. Where the medial axis
   // misses a branch, a piece of axis can sweep a region apart from the one
   // its outline walks round: the areas still add up, but a singularity on
@@ -2564,9 +2601,7 @@ const char* split_reason_name(SplitReason reason) {
 
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options) {
-  Decomposition d = Decomposer(face, axis, flow, options).run();
-  if (options.orthogonal_joins) join_splits_orthogonally(face, d);
-  return d;
+  return Decomposer(face, axis, flow, options).run();
 }
 
 }  // namespace mm

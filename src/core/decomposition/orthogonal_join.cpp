@@ -74,13 +74,14 @@ bool cross_inside(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 }
 
 // Whether the triangle b, p, q (cut off block z) holds nothing of z but
-// its own two sides along the splits: no other outline point inside it, no
-// outline segment across pq, not z's singularity.
+// its own two sides along the splits: no other outline point inside it or
+// on pq (z would be pinched), no outline segment across pq, not z's
+// singularity (the decomposer checks its members again after the joins).
 bool triangle_is_clear(const Decomposition& d, const Block& z, Vec2 b, Vec2 p, Vec2 q, double tol) {
   const std::vector<Vec2> triangle{b, p, q};
   for (const Vec2 v : z.outline) {
-    if (distance(v, b) > tol && distance(v, p) > tol && distance_to_polygon(triangle, v) > tol &&
-        inside_polygon(triangle, v))
+    if (distance(v, b) <= tol || distance(v, p) <= tol) continue;
+    if (distance_to_segment(v, p, q) <= tol || (distance_to_polygon(triangle, v) > tol && inside_polygon(triangle, v)))
       return false;
   }
   for (std::size_t i = 0, j = z.outline.size() - 1; i < z.outline.size(); j = i++) {
@@ -279,7 +280,7 @@ void apply(Decomposition& d, std::vector<BlockRing>& rings, int s, bool at_back,
 }  // namespace
 
 int join_splits_orthogonally(const FaceModel& face, Decomposition& d) {
-  const double tol = 1e-7 * face.size;
+  const double tol = 1e-9 * face.size;  // as the decomposer's: split ends are its boundary points exactly
   std::vector<BlockRing> rings;
   for (const Block& b : d.blocks) rings.push_back(ring_of(b));
   int joins = 0;

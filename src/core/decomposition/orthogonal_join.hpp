@@ -17,7 +17,9 @@ namespace mm {
 // tile the face and close up. Joins only where that brings the worst corner
 // angle at B and P at least 20 degrees nearer its logical size, both new
 // pieces are at least a quarter of the old radius and the triangle holds
-// nothing else of the block. Returns the number of joins made.
+// nothing else of the block. A split is joined at one end at most. Returns
+// the number of joins made; decompose() keeps them only if every block
+// passes its checks again.
 int join_splits_orthogonally(const FaceModel& face, Decomposition& d);
 
 }  // namespace mm

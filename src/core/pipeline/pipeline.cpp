@@ -40,11 +40,17 @@ void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
 // less merging first, then none. Last, splits along every concave corner's
 // cross, with the merging asked for and with none: a big submapped region
 // with many reflex corners (a gear's ring with a keyway) whose placement
-// folds becomes blocks with few. First of all, submapped blocks typed by
+// folds becomes blocks with few. First of all, the decomposition without
+// its orthogonal joins (the least change), then submapped blocks typed by
 // their corners alone where following the outline's turning was tried: a
 // typing with a side far off its direction that the lattice survives.
 std::vector<PipelineOptions> fallbacks(const PipelineOptions& options) {
   std::vector<PipelineOptions> list;
+  if (options.orthogonal_joins) {
+    PipelineOptions unjoined = options;
+    unjoined.orthogonal_joins = false;
+    list.push_back(unjoined);
+  }
   if (options.submap_corners_follow_turning) {
     PipelineOptions by_corners = options;
     by_corners.submap_corners_follow_turning = false;
@@ -87,6 +93,7 @@ std::string settings_text(const PipelineOptions& options) {
   }
   if (options.split_concave_corners) text << " and splits at every concave corner";
   if (!options.submap_corners_follow_turning) text << " and submapped corners by the corner rule alone";
+  if (!options.orthogonal_joins) text << " and no orthogonal joins";
   return text.str();
 }
 
@@ -124,14 +131,15 @@ Decomposition decompose_flow(const FlowOfFace& f, const PipelineOptions& options
 }
 
 // What the decomposition sees of the settings: whether it splits at every
-// concave corner, how it types submapped corners, and on each face the
-// groups of more than one singularity that merging makes. Two settings alike
-// in this decompose alike.
-using DecompositionKey = std::tuple<bool, bool, std::vector<std::vector<std::vector<int>>>>;
+// concave corner, how it types submapped corners, whether it joins splits
+// orthogonally, and on each face the groups of more than one singularity
+// that merging makes. Two settings alike in this decompose alike.
+using DecompositionKey = std::tuple<bool, bool, bool, std::vector<std::vector<std::vector<int>>>>;
 DecompositionKey decomposition_key(const std::vector<const FlowOfFace*>& flows, const PipelineOptions& options) {
-  DecompositionKey key{options.split_concave_corners, options.submap_corners_follow_turning, {}};
+  DecompositionKey key{
+      options.split_concave_corners, options.submap_corners_follow_turning, options.orthogonal_joins, {}};
   for (const FlowOfFace* f : flows) {
-    auto& groups = std::get<2>(key).emplace_back();
+    auto& groups = std::get<3>(key).emplace_back();
     if (!options.merge) continue;
     for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.tolerance))
       if (g.members.size() > 1) groups.push_back(g.members);
