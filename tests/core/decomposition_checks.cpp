@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "geometry/polygon.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial_checks.hpp"
 
@@ -11,37 +12,12 @@ namespace mm::test {
 
 namespace {
 
-bool point_in_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
-  bool in = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Vec2 a = polygon[i], b = polygon[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
-  }
-  return in;
-}
-
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double len2 = dot(d, d);
-  const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-  return distance(a + f * d, p);
-}
-
 double distance_to_polyline(Vec2 p, const std::vector<Vec2>& line, bool closed) {
   double best = 1e300;
   const std::size_t n = line.size();
   for (std::size_t i = 0; i + (closed ? 0 : 1) < n; ++i)
     best = std::min(best, distance_to_segment(p, line[i], line[(i + 1) % n]));
   return best;
-}
-
-// Whether segments ab and cd cross at a point inside both (not at an end).
-bool cross_properly(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double tol) {
-  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
-  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
-  const double ab = norm(b - a), cd = norm(d - c);
-  return ((d1 > tol * ab && d2 < -tol * ab) || (d1 < -tol * ab && d2 > tol * ab)) &&
-         ((d3 > tol * cd && d4 < -tol * cd) || (d3 < -tol * cd && d4 > tol * cd));
 }
 
 // A point inside the (counter-clockwise, simple) polygon, a little to the
@@ -57,7 +33,7 @@ std::optional<Vec2> point_just_inside(const std::vector<Vec2>& polygon, double r
     if (!(distance(a, b) > 0)) break;
     for (double step = std::min(reach, 0.25 * distance(a, b)); step > 1e-6 * reach; step *= 0.25) {
       const Vec2 p = 0.5 * (a + b) + step * perp(normalized(b - a));
-      if (point_in_polygon(polygon, p) && distance_to_polyline(p, polygon, true) > 0.5 * step) return p;
+      if (inside_polygon(polygon, p) && distance_to_polyline(p, polygon, true) > 0.5 * step) return p;
     }
   }
   return std::nullopt;
@@ -91,7 +67,7 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
     for (std::size_t i = 0; i < o.size(); ++i) {
       for (std::size_t j = i + 2; j < o.size(); ++j) {
         if (i == 0 && j + 1 == o.size()) continue;
-        if (cross_properly(o[i], o[(i + 1) % o.size()], o[j], o[(j + 1) % o.size()], 1e-9)) {
+        if (segments_cross(o[i], o[(i + 1) % o.size()], o[j], o[(j + 1) % o.size()], 1e-9)) {
           problem(name + " outline crosses itself");
           i = o.size();
           break;
@@ -172,13 +148,13 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
     for (std::size_t b = 0; b < d.blocks.size(); ++b) {
       if (b == a || !boxes_meet(a, b)) continue;
       const auto& ob = d.blocks[b].outline;
-      if (inner && point_in_polygon(ob, *inner) && distance_to_polyline(*inner, ob, true) > tol)
+      if (inner && inside_polygon(ob, *inner) && distance_to_polyline(*inner, ob, true) > tol)
         problem("block " + std::to_string(a) + " lies in block " + std::to_string(b));
       if (b < a) continue;
       bool crossing = false;
       for (std::size_t i = 0; i < oa.size() && !crossing; ++i)
         for (std::size_t j = 0; j < ob.size() && !crossing; ++j)
-          crossing = cross_properly(oa[i], oa[(i + 1) % oa.size()], ob[j], ob[(j + 1) % ob.size()], tol);
+          crossing = segments_cross(oa[i], oa[(i + 1) % oa.size()], ob[j], ob[(j + 1) % ob.size()], tol);
       if (crossing) problem("blocks " + std::to_string(a) + " and " + std::to_string(b) + " cross");
     }
   }
@@ -191,7 +167,7 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
       ++holders;
       for (int m : sing.members) {
         const Vec2 p = flow.singularities[m].p;
-        if (!point_in_polygon(block.outline, p) && distance_to_polyline(p, block.outline, true) > tol)
+        if (!inside_polygon(block.outline, p) && distance_to_polyline(p, block.outline, true) > tol)
           problem("a k = " + std::to_string(sing.k) + " singularity lies outside its block");
       }
     }
@@ -219,7 +195,7 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
       const auto& other = d.splits[j].polyline;
       for (std::size_t a = 0; a + 1 < line.size(); ++a) {
         for (std::size_t b = 0; b + 1 < other.size(); ++b) {
-          if (cross_properly(line[a], line[a + 1], other[b], other[b + 1], 1e-9))
+          if (segments_cross(line[a], line[a + 1], other[b], other[b + 1], 1e-9))
             problem("splits " + std::to_string(i) + " and " + std::to_string(j) + " cross");
         }
       }

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/polygon.hpp"
 #include "meshing/block_templates.hpp"
 
 namespace mm {
@@ -66,12 +67,6 @@ Outlined ellipse(double rx, double ry, int count) {
                              }},
                              {count}, false);
   return o;
-}
-
-double polygon_area(const std::vector<Vec2>& p) {
-  double twice = 0.0;
-  for (std::size_t k = 0; k < p.size(); ++k) twice += cross(p[k], p[(k + 1) % p.size()]);
-  return 0.5 * twice;
 }
 
 double quad_area(const QuadMesh& mesh, const std::array<int, 4>& q) {

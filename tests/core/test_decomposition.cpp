@@ -246,12 +246,7 @@ TEST(Decomposition, OrthogonalJoinsEndSplitsOnTheCrossAtRightAngles) {
       EXPECT_TRUE(same_cycle) << f.name << " block " << b << ": its corner types changed";
       // The stored area moved with the outline: what the block gained or
       // lost is what its outline encloses more or less.
-      const auto enclosed = [](const std::vector<Vec2>& outline) {
-        double twice = 0.0;
-        for (std::size_t i = 0; i < outline.size(); ++i) twice += cross(outline[i], outline[(i + 1) % outline.size()]);
-        return 0.5 * twice;
-      };
-      EXPECT_NEAR(now.area - was.area, enclosed(now.outline) - enclosed(was.outline), 1e-9 * f.area)
+      EXPECT_NEAR(now.area - was.area, polygon_area(now.outline) - polygon_area(was.outline), 1e-9 * f.area)
           << f.name << " block " << b;
     }
     EXPECT_TRUE(test::decomposition_problems(medial.face, flow, d).empty())

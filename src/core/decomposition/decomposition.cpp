@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "decomposition/block_ring.hpp"
+#include "decomposition/concave_arms.hpp"
 #include "decomposition/facing_sides.hpp"
 #include "decomposition/orthogonal_join.hpp"
 #include "geometry/polygon.hpp"
@@ -779,23 +780,12 @@ class Decomposer {
     return place;
   }
 
-  static Vec2 rotated(Vec2 v, double angle) {
-    const double c = std::cos(angle), s = std::sin(angle);
-    return {c * v.x - s * v.y, s * v.x + c * v.y};
-  }
-
   void find_concave_points() {
     for (std::size_t ci = 0; ci < face_.corners.size(); ++ci) {
       const Corner& c = face_.corners[ci];
       if (!index_.is_reflex(c.loop, c.vertex) || c.nc < 3) continue;
-      const BoundaryEdge& out = face_.loops[c.loop].edges[c.vertex];
-      const Vec2 outgoing = edge_tangent(out, out.t_start);
-      const double spacing = c.angle / c.nc;
       for (int arm = 1; arm < c.nc; ++arm) {
-        // The arm itself, or the nearest radius the corner has (perpendicular
-        // to one of its edges) where the arm points outside its fan of radii.
-        const double polar = std::clamp(arm * spacing, 0.5 * kPi, c.angle - 0.5 * kPi);
-        if (auto point = concave_point(static_cast<int>(ci), arm, rotated(outgoing, polar))) {
+        if (auto point = concave_point(static_cast<int>(ci), arm, concave_arm(face_, c, arm))) {
           concave_.push_back(*point);
         }
       }
@@ -2365,15 +2355,8 @@ class Decomposer {
     for (const Outline& o : outlines) {
       if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
-      if (const double gap = widest_joint(b); gap > 1e-5 * face_.size + 10 * face_.tolerance)
-        throw SelfCheckFailure("decomposition: pieces of a block's outline miss each other or their edges by " +
-                               std::to_string(gap));
-      if (splits_cross(b)) throw SelfCheckFailure("decomposition: a block's outline crosses itself");
-      // An outline that runs clockwise is a block turned inside out (the
-      // areas may still add up, the others' covering it twice).
-      if (!(b.area > 0.0)) throw SelfCheckFailure("decomposition: a block's outline runs clockwise (no area)");
-      int sum = 0;
-      for (const BlockCorner& c : b.corners) sum += 2 - c.type;
+      if (const std::string problem = outline_problem(b); !problem.empty()) throw SelfCheckFailure(problem);
+      const int sum = quarter_turns(b);
       if (sum != 4 + k_inside[o.component] && lenient_ && unit_in.count(o.component) == 0 &&
           make_submappable(face_, b, tol_, options_.submap_corners_follow_turning)) {
         d.notes.push_back("a block's corner types from the mesh flow did not close up; it was re-typed by its angles");
@@ -2386,10 +2369,8 @@ class Decomposer {
           std::all_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type == 1; });
       if (it != unit_in.end()) {
         b.singularity = it->second;
-        for (int m : d.singularities[it->second].members) {
-          if (!holds(b.outline, flow_.singularities[m].p))
-            throw SelfCheckFailure("decomposition: a block's singularity lies outside its outline");
-        }
+        if (!holds_its_singularity(b, d))
+          throw SelfCheckFailure("decomposition: a block's singularity lies outside its outline");
         b.kind = convex && simple(o) && b.corners.size() <= 6 ? BlockKind::Polygon : BlockKind::Submap;
         if (b.kind == BlockKind::Submap) {
           d.fallback = true;
@@ -2406,7 +2387,7 @@ class Decomposer {
       total += b.area;
       d.blocks.push_back(std::move(b));
     }
-    if (std::abs(total - face_.area) > 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size) {
+    if (!adds_up_to_the_face(total)) {
       std::ostringstream text;
       text << std::setprecision(10) << "decomposition: the blocks' areas add up to " << total << ", the face's is "
            << face_.area << " (off by " << std::setprecision(3) << (total - face_.area) / face_.area << " of it)";
@@ -2457,25 +2438,46 @@ class Decomposer {
   // block for block), each singularity's members inside its block, and the
   // areas adding up to the face's.
   bool passes_block_checks(const Decomposition& d, const Decomposition& unjoined) const {
-    const auto turning = [](const Block& b) {
-      int sum = 0;
-      for (const BlockCorner& c : b.corners) sum += 2 - c.type;
-      return sum;
-    };
     if (d.blocks.size() != unjoined.blocks.size()) return false;
     double total = 0.0;
     for (std::size_t i = 0; i < d.blocks.size(); ++i) {
       const Block& b = d.blocks[i];
-      if (widest_joint(b) > 1e-5 * face_.size + 10 * face_.tolerance || splits_cross(b) || !(b.area > 0.0) ||
-          turning(b) != turning(unjoined.blocks[i]))
+      if (!outline_problem(b).empty() || quarter_turns(b) != quarter_turns(unjoined.blocks[i]) ||
+          (b.singularity >= 0 && !holds_its_singularity(b, d)))
         return false;
-      if (b.singularity >= 0) {
-        for (int m : d.singularities[b.singularity].members)
-          if (!holds(b.outline, flow_.singularities[m].p)) return false;
-      }
       total += b.area;
     }
-    return std::abs(total - face_.area) <= 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size;
+    return adds_up_to_the_face(total);
+  }
+
+  // What is wrong with a block's outline, or empty: pieces that miss each
+  // other or their edges, split pieces that cross, or an outline that runs
+  // clockwise (a block turned inside out: the areas may still add up, the
+  // others' covering it twice).
+  std::string outline_problem(const Block& b) const {
+    if (const double gap = widest_joint(b); gap > 1e-5 * face_.size + 10 * face_.tolerance)
+      return "decomposition: pieces of a block's outline miss each other or their edges by " + std::to_string(gap);
+    if (splits_cross(b)) return "decomposition: a block's outline crosses itself";
+    if (!(b.area > 0.0)) return "decomposition: a block's outline runs clockwise (no area)";
+    return {};
+  }
+
+  // sum(2 - type) over the block's corners: 4 + the k it holds when it closes up.
+  static int quarter_turns(const Block& b) {
+    int sum = 0;
+    for (const BlockCorner& c : b.corners) sum += 2 - c.type;
+    return sum;
+  }
+
+  // Whether every member of the block's singularity lies in its outline.
+  bool holds_its_singularity(const Block& b, const Decomposition& d) const {
+    for (int m : d.singularities[b.singularity].members)
+      if (!holds(b.outline, flow_.singularities[m].p)) return false;
+    return true;
+  }
+
+  bool adds_up_to_the_face(double total_area) const {
+    return std::abs(total_area - face_.area) <= 1e-9 * face_.area + 1e-6 * face_.tolerance * face_.size;
   }
 
   // Whether p lies inside a closed outline or on it. Where the medial axis

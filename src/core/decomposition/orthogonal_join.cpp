@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "decomposition/block_ring.hpp"
+#include "decomposition/concave_arms.hpp"
 #include "decomposition/facing_sides.hpp"
 #include "geometry/polygon.hpp"
 
@@ -40,21 +41,11 @@ OutlinePiece split_piece(int split, Vec2 a, Vec2 b, bool forward) {
   return p;
 }
 
-Vec2 rotated(Vec2 v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 // Whether direction u leaves the concave corner along an arm of its cross
-// (as the decomposition's corner splits do: the arm, kept at least a right
-// angle from either edge).
+// (as the decomposition's corner splits do).
 bool along_an_arm(const FaceModel& face, const Corner& c, Vec2 u) {
-  const BoundaryEdge& out = face.loops[c.loop].edges[c.vertex];
-  const Vec2 outgoing = normalized(edge_tangent(out, out.t_start));
-  const double spacing = c.angle / c.nc;
   for (int arm = 1; arm < c.nc; ++arm) {
-    const double polar = std::clamp(arm * spacing, 0.5 * kPi, c.angle - 0.5 * kPi);
-    if (std::abs(signed_angle(rotated(outgoing, polar), u)) < 1e-4) return true;
+    if (std::abs(signed_angle(concave_arm(face, c, arm), u)) < 1e-4) return true;
   }
   return false;
 }
@@ -64,13 +55,6 @@ const Corner* concave_corner_at(const FaceModel& face, Vec2 p, double tol) {
     if (c.nc >= 3 && distance(c.position, p) <= tol) return &c;
   }
   return nullptr;
-}
-
-// Whether segments ab and cd cross at a point inside both.
-bool cross_inside(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
-  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
 // Whether the triangle b, p, q (cut off block z) holds nothing of z but
@@ -85,7 +69,7 @@ bool triangle_is_clear(const Decomposition& d, const Block& z, Vec2 b, Vec2 p, V
       return false;
   }
   for (std::size_t i = 0, j = z.outline.size() - 1; i < z.outline.size(); j = i++) {
-    if (cross_inside(z.outline[j], z.outline[i], p, q)) return false;
+    if (segments_cross(z.outline[j], z.outline[i], p, q)) return false;
   }
   if (z.singularity >= 0) {
     const Vec2 s = d.singularities[z.singularity].p;
@@ -231,22 +215,17 @@ void apply(Decomposition& d, std::vector<BlockRing>& rings, int s, bool at_back,
     return from_q ? split_piece(j.other, j.q, j.m, b_first) : split_piece(j.other, j.m, j.q, !b_first);
   };
 
-  // Z: both pieces at B end at Q instead; the corner (type 1) goes with them.
-  BlockRing& z = rings[j.z];
-  for (OutlinePiece& piece : z.pieces) {
-    if ((piece.split == s &&
-         (distance(piece.points.front(), j.p) <= tol || distance(piece.points.back(), j.p) <= tol)) ||
-        (piece.split == j.other &&
-         (distance(piece.points.front(), j.m) <= tol || distance(piece.points.back(), j.m) <= tol)))
-      move_end(piece, j.b, j.q, tol);
+  // Z: both pieces at B (of this split and the other) end at Q instead; the
+  // corner (type 1) goes with them.
+  for (OutlinePiece& piece : rings[j.z].pieces) {
+    if (piece.split == s || piece.split == j.other) move_end(piece, j.b, j.q, tol);
   }
 
   // Y: B is straight on now (its corner type 1 + the triangle's 1 = 2), a
   // corner of type 1 at Q between the other split and this one.
   BlockRing& y = rings[j.y];
   if (const int i = piece_index(y, s, j.b, j.p, tol); i >= 0) {
-    move_end(y.pieces[i], j.b, j.q, tol);
-    y.start_type[i] = 1;
+    move_end(y.pieces[i], j.b, j.q, tol);  // its start, type 1, is Q now
     y.pieces.insert(y.pieces.begin() + i, piece_bq(true));
     y.start_type.insert(y.start_type.begin() + i, 2);
   } else {

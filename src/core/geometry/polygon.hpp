@@ -20,6 +20,24 @@ inline bool inside_polygon(const std::vector<Vec2>& polygon, Vec2 p) {
   return in;
 }
 
+// The signed area of a closed polygon (positive counter-clockwise).
+inline double polygon_area(const std::vector<Vec2>& polygon) {
+  double twice = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) twice += cross(polygon[k], polygon[(k + 1) % polygon.size()]);
+  return 0.5 * twice;
+}
+
+// Whether segments ab and cd cross at a point inside both (not at an end):
+// each pair of ends strictly on either side of the other segment, by more
+// than tol times its length.
+inline bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double tol = 0.0) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  const double ab = norm(b - a), cd = norm(d - c);
+  return ((d1 > tol * ab && d2 < -tol * ab) || (d1 < -tol * ab && d2 > tol * ab)) &&
+         ((d3 > tol * cd && d4 < -tol * cd) || (d3 < -tol * cd && d4 > tol * cd));
+}
+
 // The distance from p to the segment from a to b.
 inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 d = b - a;

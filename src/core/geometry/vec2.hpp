@@ -66,6 +66,11 @@ inline Vec2 normalized(Vec2 a) {
   const double n = norm(a);
   return n > 0.0 ? a / n : a;
 }
+// v turned counter-clockwise by `angle` radians.
+inline Vec2 rotated(Vec2 v, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
 // Signed angle turning a into b, in (-pi, pi].
 inline double signed_angle(Vec2 a, Vec2 b) {
   return std::atan2(cross(a, b), dot(a, b));

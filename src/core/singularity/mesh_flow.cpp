@@ -38,11 +38,6 @@ namespace {
 
 constexpr double kHalfPi = 0.5 * kPi;
 
-Vec2 rotated(Vec2 v, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return {c * v.x - s * v.y, s * v.x + c * v.y};
-}
-
 // The cross seen from one touching point.
 struct Side {
   Vec2 radius;      // true direction from the boundary into the face
