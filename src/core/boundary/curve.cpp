@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 namespace mm {
 namespace {
@@ -35,12 +36,21 @@ int find_span(const BSplineCurve& c, double t) {
   return static_cast<int>(it - c.knots.begin()) - 1;
 }
 
+// Degree kDegree, or c.degree when kDegree is 0. Fixed degrees let the
+// compiler unroll the loops below; the arithmetic is the same, bit for bit.
+template <int kDegree>
+int degree_of(const BSplineCurve& c) {
+  return kDegree > 0 ? kDegree : c.degree;
+}
+
 // Basis functions and their first two derivatives at t on span i
 // (Piegl & Tiller, The NURBS Book, algorithm A2.3).
+template <int kDegree>
 void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32]) {
-  const int p = c.degree;
-  double ndu[32][32];
-  double left[32], right[32];
+  const int p = degree_of<kDegree>(c);
+  constexpr int kSize = kDegree > 0 ? kDegree + 1 : 32;
+  double ndu[kSize][kSize];
+  double left[kSize], right[kSize];
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - c.knots[i + 1 - j];
@@ -55,7 +65,7 @@ void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32
     ndu[j][j] = saved;
   }
   for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
-  double a[2][32];
+  double a[2][kSize < 3 ? 3 : kSize];  // a[.][k] for k up to 2
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
     a[0][0] = 1.0;
@@ -87,17 +97,18 @@ void basis_derivatives(const BSplineCurve& c, int i, double t, double ders[3][32
   }
 }
 
+template <int kDegree>
 CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
-  if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
+  const int degree = degree_of<kDegree>(c);
   const int span = find_span(c, t);
   double ders[3][32];  // basis_derivatives fills [0..2][0..degree], all that is read
-  basis_derivatives(c, span, t, ders);
+  basis_derivatives<kDegree>(c, span, t, ders);
   const bool rational = !c.weights.empty();
   // Homogeneous sums: A = sum N w P, W = sum N w, for value and derivatives.
   Vec2 a[3];
   double w[3] = {0.0, 0.0, 0.0};
-  for (int j = 0; j <= c.degree; ++j) {
-    const int idx = span - c.degree + j;
+  for (int j = 0; j <= degree; ++j) {
+    const int idx = span - degree + j;
     const double wj = rational ? c.weights[idx] : 1.0;
     for (int k = 0; k < 3; ++k) {
       a[k] = a[k] + ders[k][j] * wj * c.poles[idx];
@@ -113,9 +124,11 @@ CurvePoint evaluate_bspline(const BSplineCurve& c, double t) {
 // The basis functions alone at t on span i: the first column of
 // basis_derivatives' table by the same arithmetic (The NURBS Book, A2.2),
 // so a point evaluated from them is bit for bit the point evaluate gives.
+template <int kDegree>
 void basis_functions(const BSplineCurve& c, int i, double t, double n[32]) {
-  const int p = c.degree;
-  double left[32], right[32];
+  const int p = degree_of<kDegree>(c);
+  constexpr int kSize = kDegree > 0 ? kDegree + 1 : 32;
+  double left[kSize], right[kSize];
   n[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = t - c.knots[i + 1 - j];
@@ -130,21 +143,36 @@ void basis_functions(const BSplineCurve& c, int i, double t, double n[32]) {
   }
 }
 
+template <int kDegree>
 Vec2 evaluate_bspline_point(const BSplineCurve& c, double t) {
-  if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
+  const int degree = degree_of<kDegree>(c);
   const int span = find_span(c, t);
   double n[32];
-  basis_functions(c, span, t, n);
+  basis_functions<kDegree>(c, span, t, n);
   const bool rational = !c.weights.empty();
   Vec2 a;
   double w = 0.0;
-  for (int j = 0; j <= c.degree; ++j) {
-    const int idx = span - c.degree + j;
+  for (int j = 0; j <= degree; ++j) {
+    const int idx = span - degree + j;
     const double wj = rational ? c.weights[idx] : 1.0;
     a = a + n[j] * wj * c.poles[idx];
     w += n[j] * wj;
   }
   return a / w;
+}
+
+// f(std::integral_constant<int, d>()) with d the curve's degree where it is
+// a common one, else 0 (the degree read from the curve).
+template <class F>
+decltype(auto) with_degree(const BSplineCurve& c, F f) {
+  if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
+  switch (c.degree) {
+    case 1: return f(std::integral_constant<int, 1>());
+    case 2: return f(std::integral_constant<int, 2>());
+    case 3: return f(std::integral_constant<int, 3>());
+    case 5: return f(std::integral_constant<int, 5>());
+    default: return f(std::integral_constant<int, 0>());
+  }
 }
 
 }  // namespace
@@ -170,14 +198,17 @@ CurvePoint evaluate(const Curve& curve, double t) {
     CurvePoint operator()(const LineCurve& c) const { return evaluate_line(c, t); }
     CurvePoint operator()(const CircleCurve& c) const { return evaluate_circle(c, t); }
     CurvePoint operator()(const EllipseCurve& c) const { return evaluate_ellipse(c, t); }
-    CurvePoint operator()(const BSplineCurve& c) const { return evaluate_bspline(c, t); }
+    CurvePoint operator()(const BSplineCurve& c) const {
+      return with_degree(c, [&](auto d) { return evaluate_bspline<decltype(d)::value>(c, t); });
+    }
     CurvePoint operator()(const OtherCurve& c) const { return c.evaluate(t); }
   };
   return std::visit(Visitor{t}, curve);
 }
 
 Vec2 evaluate_point(const Curve& curve, double t) {
-  if (const auto* bs = std::get_if<BSplineCurve>(&curve)) return evaluate_bspline_point(*bs, t);
+  if (const auto* bs = std::get_if<BSplineCurve>(&curve))
+    return with_degree(*bs, [&](auto d) { return evaluate_bspline_point<decltype(d)::value>(*bs, t); });
   return evaluate(curve, t).p;
 }
 
