@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -175,6 +176,30 @@ decltype(auto) with_degree(const BSplineCurve& c, F f) {
   }
 }
 
+// The second derivative of a B-spline of degree p >= 2 on a knot span is a
+// convex combination of the p - 1 control points of its second-derivative
+// curve there (The NURBS Book, eq. 3.8 applied twice), so the largest of
+// their lengths bounds it.
+double bspline_second_derivative_bound(const BSplineCurve& c, double lo, double hi) {
+  if (!c.weights.empty()) return std::numeric_limits<double>::infinity();
+  const int p = c.degree;
+  if (p < 2) return 0.0;  // straight between knots
+  const int span = find_span(c, 0.5 * (lo + hi));
+  const auto& u = c.knots;
+  // First-derivative control point Q_i = p (P_{i+1} - P_i) / (u_{i+p+1} - u_{i+1}).
+  const auto q = [&](int i) {
+    const double du = u[i + p + 1] - u[i + 1];
+    return du > 0.0 ? (p / du) * (c.poles[i + 1] - c.poles[i]) : Vec2{};
+  };
+  double bound = 0.0;
+  for (int i = span - p; i <= span - 2; ++i) {
+    const double du = u[i + p + 1] - u[i + 2];
+    if (du <= 0.0) continue;  // its basis function is zero on the span
+    bound = std::max(bound, norm(((p - 1) / du) * (q(i + 1) - q(i))));
+  }
+  return bound;
+}
+
 }  // namespace
 
 CurveType curve_type(const Curve& curve) {
@@ -223,6 +248,20 @@ std::vector<double> breakpoints(const Curve& curve, double lo, double hi) {
     }
   }
   return result;
+}
+
+double second_derivative_bound(const Curve& curve, double lo, double hi) {
+  switch (curve_type(curve)) {
+    case CurveType::Line: return 0.0;
+    case CurveType::Circle: return std::get<CircleCurve>(curve).radius;
+    case CurveType::Ellipse: {
+      const EllipseCurve& e = std::get<EllipseCurve>(curve);
+      return std::max(e.major_radius, e.minor_radius);
+    }
+    case CurveType::BSpline: return bspline_second_derivative_bound(std::get<BSplineCurve>(curve), lo, hi);
+    case CurveType::Other: break;
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace mm

@@ -73,4 +73,10 @@ Vec2 evaluate_point(const Curve& curve, double t);
 // knots); integration and sampling split there.
 std::vector<double> breakpoints(const Curve& curve, double lo, double hi);
 
+// An upper bound of |C''(t)| over [lo, hi], an interval between two
+// breakpoints; infinity where none is known (rational B-splines, other
+// curves). A chord of that interval then stays within
+// bound * (hi - lo)^2 / 8 of the curve.
+double second_derivative_bound(const Curve& curve, double lo, double hi);
+
 }  // namespace mm

@@ -16,6 +16,11 @@ namespace mm {
 // search for a few hundred points than an R-tree).
 struct NearestBoundary::Samples {
   std::vector<BoundaryPlace> places;
+  // How far the boundary may stray from the chord of places[i] and
+  // places[i + 1] (when on one edge): a bound from the curve's second
+  // derivative, no more than the sampling's tolerance.
+  std::vector<double> sag_after;
+  double max_sag = 0.0;
   Vec2 origin;
   double cell = 1.0;
   int nx = 1, ny = 1;
@@ -127,16 +132,25 @@ struct NearestBoundary::Samples {
 NearestBoundary::NearestBoundary(const BoundaryIndex& index) : index_(index), samples_(new Samples) {
   const FaceModel& face = index.face();
   const double spacing = spacing_ = 1e-2 * face.size;
+  const double tolerance = 1e-3 * face.size;
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
-      const std::vector<double> params = sample_edge_parameters(e, 1e-3 * face.size);
+      const std::vector<double> params = sample_edge_parameters(e, tolerance);
       for (std::size_t k = 0; k + 1 < params.size(); ++k) {
         const Vec2 a = evaluate_point(e.curve, params[k]), b = evaluate_point(e.curve, params[k + 1]);
         const int steps = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing)));
+        const double step = (params[k + 1] - params[k]) / steps;
+        // Rounding of the points themselves aside (1e-12 of the face).
+        const double sag = std::min(tolerance, second_derivative_bound(e.curve, std::min(params[k], params[k + 1]),
+                                                                       std::max(params[k], params[k + 1])) *
+                                                       step * step / 8 +
+                                                   1e-12 * face.size);
         for (int s = 0; s < steps; ++s) {
           const double t = params[k] + (params[k + 1] - params[k]) * s / steps;
           samples_->places.push_back(index.place(static_cast<int>(li), static_cast<int>(ei), t));
+          samples_->sag_after.push_back(sag);
+          samples_->max_sag = std::max(samples_->max_sag, sag);
         }
       }
     }
@@ -172,29 +186,34 @@ BoundaryPlace NearestBoundary::nearest(Vec2 p) const {
     const BoundaryPlace exact = nearest_on_run(index_, place, p);
     if (distance(exact.point, p) < best_distance) best = exact, best_distance = distance(exact.point, p);
   };
-  for (int i = 0; i < count; ++i) refine(found[i].second, found[i].first);
+  // Whether the boundary on the chords either side of a sample may come
+  // nearer than the best yet: it strays from a chord by at most its sag.
+  const auto may_come_nearer = [&](int sample, double d) {
+    const BoundaryPlace& here = samples_->places[sample];
+    double closest = d;
+    for (int other : {sample - 1, sample + 1}) {
+      if (other < 0 || other >= static_cast<int>(samples_->places.size())) continue;
+      const BoundaryPlace& q = samples_->places[other];
+      if (q.loop == here.loop && q.edge == here.edge)
+        closest = std::min(closest,
+                           distance_to_segment(p, here.point, q.point) - samples_->sag_after[std::min(sample, other)]);
+    }
+    return closest < best_distance;
+  };
+  for (int i = 0; i < count; ++i) {
+    const auto [d, sample] = found[i];
+    if (i == 0 || (!stretch_refined(samples_->places[sample]) && may_come_nearer(sample, d))) refine(sample, d);
+  }
   // The nearest point of a stretch lies within half a sample spacing (and
-  // the curves' sag from the samples' chords) of one of its samples, which
-  // may be farther than all of the six nearest samples when another stretch
-  // is almost as near (a hole's edge a hair farther than the outline):
-  // every stretch with a sample that close to the best distance is refined
-  // (samples nearer than the sixth nearest are among the six already), if
-  // the boundary between the sample and a neighbour may come nearer than the
-  // best yet: it strays from their chord by at most the sampling's tolerance.
-  const double sag = 1e-3 * index_.face().size;
-  const double reach = best_distance + 0.5 * spacing_ + sag;
+  // its chord's sag) of one of its samples, which may be farther than all of
+  // the six nearest samples when another stretch is almost as near (a hole's
+  // edge a hair farther than the outline): every stretch with a sample that
+  // close to the best distance is refined (samples nearer than the sixth
+  // nearest are among the six already) where it may come nearer.
+  const double reach = best_distance + 0.5 * spacing_ + samples_->max_sag;
   if (count == 6 && found[5].first < reach) {
     samples_->within(p, found[5].first, reach, [&](int sample, double d) {
-      const BoundaryPlace& here = samples_->places[sample];
-      if (stretch_refined(here)) return;
-      double chords = d;
-      for (int other : {sample - 1, sample + 1}) {
-        if (other < 0 || other >= static_cast<int>(samples_->places.size())) continue;
-        const BoundaryPlace& q = samples_->places[other];
-        if (q.loop == here.loop && q.edge == here.edge)
-          chords = std::min(chords, distance_to_segment(p, here.point, q.point));
-      }
-      if (chords - sag < best_distance) refine(sample, d);
+      if (!stretch_refined(samples_->places[sample]) && may_come_nearer(sample, d)) refine(sample, d);
     });
   }
   return best;
