@@ -162,8 +162,9 @@ Vec2 evaluate_bspline_point(const BSplineCurve& c, double t) {
   return a / w;
 }
 
-// f(std::integral_constant<int, d>()) with d the curve's degree where it is
-// a common one, else 0 (the degree read from the curve).
+// f(std::integral_constant<int, d>()) with d the curve's degree up to 10
+// (the shared real CAD faces have 3, 5, 7 and rational 10), else 0 (the
+// degree read from the curve).
 template <class F>
 decltype(auto) with_degree(const BSplineCurve& c, F f) {
   if (c.degree < 1 || c.degree > 30) throw std::invalid_argument("unsupported B-spline degree");
@@ -171,7 +172,13 @@ decltype(auto) with_degree(const BSplineCurve& c, F f) {
     case 1: return f(std::integral_constant<int, 1>());
     case 2: return f(std::integral_constant<int, 2>());
     case 3: return f(std::integral_constant<int, 3>());
+    case 4: return f(std::integral_constant<int, 4>());
     case 5: return f(std::integral_constant<int, 5>());
+    case 6: return f(std::integral_constant<int, 6>());
+    case 7: return f(std::integral_constant<int, 7>());
+    case 8: return f(std::integral_constant<int, 8>());
+    case 9: return f(std::integral_constant<int, 9>());
+    case 10: return f(std::integral_constant<int, 10>());
     default: return f(std::integral_constant<int, 0>());
   }
 }
