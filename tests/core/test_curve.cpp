@@ -2,7 +2,10 @@
 // derivatives of every kind against finite differences.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <random>
 
 #include "boundary/curve.hpp"
 
@@ -43,6 +46,68 @@ TEST(Curve, DerivativesMatchFiniteDifferences) {
   const BSplineCurve cubic{3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}, {{0, 0}, {1, 2}, {2, -1}, {3, 3}, {4, 0}}, {}};
   expect_derivatives_match(cubic, 0.2);
   expect_derivatives_match(cubic, 0.7);
+}
+
+// A clamped B-spline of the given degree on random knots (some interior
+// ones doubled) and random poles.
+BSplineCurve random_bspline(int degree, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0), coord(-5.0, 5.0);
+  BSplineCurve c;
+  c.degree = degree;
+  std::vector<double> interior;
+  for (int k = 0; k < 6; ++k) {
+    interior.push_back(unit(rng));
+    if (degree > 2 && unit(rng) < 0.3) interior.push_back(interior.back());
+  }
+  std::sort(interior.begin(), interior.end());
+  c.knots.assign(degree + 1, 0.0);
+  c.knots.insert(c.knots.end(), interior.begin(), interior.end());
+  c.knots.insert(c.knots.end(), degree + 1, 1.0);
+  for (std::size_t i = 0; i + degree + 1 < c.knots.size(); ++i) c.poles.push_back({coord(rng), coord(rng)});
+  return c;
+}
+
+TEST(Curve, EveryDegreeMatchesFiniteDifferences) {
+  std::mt19937 rng(7);
+  for (int degree = 1; degree <= 12; ++degree) {  // 11 and 12 take the general loops
+    const BSplineCurve c = random_bspline(degree, rng);
+    for (double t : {0.13, 0.41, 0.77}) {
+      if (degree >= 3) expect_derivatives_match(c, t);
+      EXPECT_EQ(evaluate_point(c, t).x, evaluate(c, t).p.x);  // the point alone, bit for bit
+      EXPECT_EQ(evaluate_point(c, t).y, evaluate(c, t).p.y);
+    }
+  }
+}
+
+// The bound holds at every point of each knot span, and so the chord of any
+// piece of a span stays within bound * dt^2 / 8 of the curve.
+TEST(Curve, SecondDerivativeBoundHoldsOnEveryKnotSpan) {
+  std::mt19937 rng(11);
+  for (int degree = 1; degree <= 9; ++degree) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const BSplineCurve c = random_bspline(degree, rng);
+      std::vector<double> cuts{0.0};
+      for (double b : breakpoints(c, 0.0, 1.0)) cuts.push_back(b);
+      cuts.push_back(1.0);
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double lo = cuts[k], hi = cuts[k + 1];
+        const double bound = second_derivative_bound(c, lo, hi);
+        ASSERT_TRUE(std::isfinite(bound));
+        const Vec2 a = evaluate_point(c, lo), b = evaluate_point(c, hi);
+        for (int i = 0; i <= 50; ++i) {
+          const double t = lo + (hi - lo) * i / 50;
+          const CurvePoint p = evaluate(c, t);
+          // At a knot evaluate takes the next span's second derivative.
+          if (i < 50) EXPECT_LE(norm(p.d2), bound * (1 + 1e-9) + 1e-9) << "degree " << degree << " t " << t;
+          const Vec2 chord = a + ((t - lo) / (hi - lo)) * (b - a);
+          EXPECT_LE(distance(p.p, chord), bound * (hi - lo) * (hi - lo) / 8 + 1e-12);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(second_derivative_bound(LineCurve{{0, 0}, {1, 0}}, 0.0, 1.0), 0.0);
+  EXPECT_EQ(second_derivative_bound(CircleCurve{{1, 2}, 3, 0.4, -1}, 0.0, 1.0), 3.0);
+  EXPECT_EQ(second_derivative_bound(quarter_circle(), 0.0, 1.0), std::numeric_limits<double>::infinity());
 }
 
 TEST(Curve, BreakpointsAreInteriorKnots) {
