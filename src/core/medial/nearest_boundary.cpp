@@ -26,6 +26,10 @@ struct NearestBoundary::Samples {
   int nx = 1, ny = 1;
   std::vector<int> first;  // cell c holds places[order[first[c] .. first[c + 1])]
   std::vector<int> order;
+  // Per cell, how many rings of cells round it hold no sample: the ring
+  // search starts there (a medial point far from the boundary has most of
+  // its disc's cells empty).
+  std::vector<int> clear;
 
   std::pair<int, int> cell_of(Vec2 p) const {
     return {std::clamp(static_cast<int>(std::floor((p.x - origin.x) / cell)), 0, nx - 1),
@@ -55,6 +59,21 @@ struct NearestBoundary::Samples {
     order.resize(places.size());
     std::vector<int> fill(first.begin(), first.end() - 1);
     for (std::size_t i = 0; i < places.size(); ++i) order[fill[cell_index[i]]++] = static_cast<int>(i);
+    // Chessboard distance to the nearest cell holding a sample, by two passes
+    // over the grid (exact for this metric).
+    const int far = nx + ny;
+    clear.assign(static_cast<std::size_t>(nx) * ny, far);
+    for (int c = 0; c < nx * ny; ++c)
+      if (first[c + 1] > first[c]) clear[c] = 0;
+    const auto relax = [&](int x, int y, int dx, int dy) {
+      const int ox = x + dx, oy = y + dy;
+      if (ox >= 0 && ox < nx && oy >= 0 && oy < ny)
+        clear[y * nx + x] = std::min(clear[y * nx + x], clear[oy * nx + ox] + 1);
+    };
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x) relax(x, y, -1, -1), relax(x, y, 0, -1), relax(x, y, 1, -1), relax(x, y, -1, 0);
+    for (int y = ny - 1; y >= 0; --y)
+      for (int x = nx - 1; x >= 0; --x) relax(x, y, 1, 1), relax(x, y, 0, 1), relax(x, y, -1, 1), relax(x, y, 1, 0);
   }
 
   // The k samples nearest p, nearest first (ties in no particular order):
@@ -64,7 +83,12 @@ struct NearestBoundary::Samples {
     const auto [cx, cy] = cell_of(p);
     const auto visit = [&](int x, int y) {
       const int c = y * nx + x;
+      // Past the k-th by a margin far above rounding in the squares, a sample
+      // is left out without its (dearer) distance.
+      const double beyond = count == k ? found[k - 1].first * found[k - 1].first * (1 + 1e-9) : 1e300;
       for (int j = first[c]; j < first[c + 1]; ++j) {
+        const Vec2 v = places[order[j]].point - p;
+        if (dot(v, v) > beyond) continue;
         const double d = distance(places[order[j]].point, p);
         if (count == k && d >= found[k - 1].first) continue;
         int at = count < k ? count++ : k - 1;
@@ -73,7 +97,7 @@ struct NearestBoundary::Samples {
       }
     };
     const int rings = std::max({cx, nx - 1 - cx, cy, ny - 1 - cy});
-    for (int r = 0; r <= rings; ++r) {
+    for (int r = clear[cy * nx + cx]; r <= rings; ++r) {
       // Every cell of ring r is at least (r - 1) cells from p, inside the grid or out.
       if (count == k && (r - 1) * cell > found[k - 1].first) break;
       for (int x = cx - r; x <= cx + r; ++x) {
@@ -96,14 +120,14 @@ struct NearestBoundary::Samples {
   template <class F>
   void within(Vec2 p, double low, double high, F f) const {
     const double low2 = low * low, high2 = high * high;
+    // The cells of a row are consecutive in `order`.
     const auto visit = [&](int y, int x0, int x1) {
-      for (int x = std::max(x0, 0); x <= std::min(x1, nx - 1); ++x) {
-        const int c = y * nx + x;
-        for (int j = first[c]; j < first[c + 1]; ++j) {
-          const Vec2 v = places[order[j]].point - p;
-          const double d2 = dot(v, v);
-          if (d2 >= low2 && d2 <= high2) f(order[j], std::sqrt(d2));
-        }
+      x0 = std::max(x0, 0), x1 = std::min(x1, nx - 1);
+      if (x0 > x1) return;
+      for (int j = first[y * nx + x0]; j < first[y * nx + x1 + 1]; ++j) {
+        const Vec2 v = places[order[j]].point - p;
+        const double d2 = dot(v, v);
+        if (d2 >= low2 && d2 <= high2) f(order[j], std::sqrt(d2));
       }
     };
     const int y0 = std::max(0, static_cast<int>(std::floor((p.y - high - origin.y) / cell)) - 1);
