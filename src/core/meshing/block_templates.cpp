@@ -435,8 +435,13 @@ void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
       scratch.block_of_quad.clear();
       Filler trial{scratch, f.block};
       const double uniformity = fill_disc_layout(trial, scratch_loop, start, depth, trial_a, trial_b);
+      // The worst corner only falls: once this layout cannot beat the best
+      // (rounding keeps the order of the sums), the rest need not be valued.
       double worst = 1.0;
-      for (const auto& q : scratch.quads) worst = std::min(worst, worst_corner_jacobian(scratch, q));
+      for (const auto& q : scratch.quads) {
+        worst = std::min(worst, worst_corner_jacobian(scratch, q));
+        if (worst + 0.5 * uniformity <= best_score) break;
+      }
       const double score = worst + 0.5 * uniformity;
       if (score > best_score) best_score = score, best_start = start, best_depth = depth;
     }
