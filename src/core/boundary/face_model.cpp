@@ -346,6 +346,23 @@ double signed_area(const Loop& loop) {
 double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, Vec2 ref) {
   const double lo = std::min(t_from, t_to), hi = std::max(t_from, t_to);
   if (!(hi > lo)) return 0.0;
+  // Lines and conics in closed form: seen from the centre c, a circle or
+  // ellipse sweeps sense * a * b / 2 per unit of parameter, and what ref adds
+  // is cross(c - ref, p(hi) - p(lo)) / 2 (a line: its start for c, nothing swept).
+  const double sign = t_to >= t_from ? 1.0 : -1.0;
+  const Vec2 a = evaluate_point(edge, lo), b = evaluate_point(edge, hi);
+  switch (curve_type(edge.curve)) {
+    case CurveType::Line: return sign * 0.5 * cross(a - ref, b - a);
+    case CurveType::Circle: {
+      const CircleCurve& c = std::get<CircleCurve>(edge.curve);
+      return sign * 0.5 * (cross(c.center - ref, b - a) + c.sense * c.radius * c.radius * (hi - lo));
+    }
+    case CurveType::Ellipse: {
+      const EllipseCurve& e = std::get<EllipseCurve>(edge.curve);
+      return sign * 0.5 * (cross(e.center - ref, b - a) + e.sense * e.major_radius * e.minor_radius * (hi - lo));
+    }
+    default: break;
+  }
   std::vector<double> cuts{lo};
   for (double t : pieces(edge)) {
     if (t > lo && t < hi) cuts.push_back(t);
