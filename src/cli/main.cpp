@@ -215,15 +215,13 @@ void run_singularities(const Options& o, const mm::FaceModel& given) {
 }
 
 void run_decompose(const Options& o, const mm::FaceModel& given) {
-  const mm::FaceAxis medial = mm::compute_face_medial_axis(given);
-  const mm::FaceModel& face = medial.face;
-  const mm::MedialAxis& axis = medial.axis;
-  const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
   mm::DecompositionOptions options;
   options.merge = !o.no_merge;
   if (o.merge) options.tolerance = *o.merge;
-  mm::Decomposition decomposition = mm::decompose(face, axis, flow, options);
-  if (!medial.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), medial.note);
+  const mm::DecomposedFace decomposed = mm::decompose_face(given, options);
+  const mm::FaceModel& face = decomposed.face;
+  const mm::MedialAxis& axis = decomposed.axis;
+  const mm::Decomposition& decomposition = decomposed.decomposition;
   if (o.json) std::cout << mm::decomposition_report_json(face, decomposition).dump(2) << "\n";
   if (!o.svg.empty()) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);

@@ -196,16 +196,12 @@ PYBIND11_MODULE(_medialmesh, m) {
       "decompose",
       [](const std::string& brep, const std::string& name, std::optional<double> merge,
          std::optional<double> mesh_size) {
-        const mm::FaceAxis medial = mm::compute_face_medial_axis(mm::face_model_from_brep_string(brep, name));
-        const mm::FaceModel& face = medial.face;
-        const mm::MeshFlow flow = mm::compute_mesh_flow(face, medial.axis);
         mm::DecompositionOptions options;
         options.merge = merge.has_value() || mesh_size.has_value();
         options.tolerance = {merge.value_or(0.75), mesh_size.value_or(0.0)};
-        mm::Decomposition decomposition = mm::decompose(face, medial.axis, flow, options);
-        if (!medial.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), medial.note);
-        nlohmann::json report = mm::decomposition_report_json(face, decomposition);
-        report["frame"] = mm::frame_json(face.frame);
+        const mm::DecomposedFace decomposed = mm::decompose_face(mm::face_model_from_brep_string(brep, name), options);
+        nlohmann::json report = mm::decomposition_report_json(decomposed.face, decomposed.decomposition);
+        report["frame"] = mm::frame_json(decomposed.face.frame);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face", py::arg("merge") = py::none(), py::arg("mesh_size") = py::none(),

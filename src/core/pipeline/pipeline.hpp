@@ -31,6 +31,17 @@ struct MeshedFace {
 // note in blocks.notes says when a fallback was used).
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
+// The decomposition alone, as `medialmesh decompose` and the Python
+// decompose() give it: the face as the medial axis took it (its kinks as
+// corners if that was needed), the axis, and the blocks, the axis's note
+// first among their notes. No fallbacks: a failed check throws.
+struct DecomposedFace {
+  FaceModel face;
+  MedialAxis axis;
+  Decomposition decomposition;
+};
+DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options);
+
 // Several faces meshed together: the pieces of boundary they share in 3-D
 // (coplanar or not, a vertex of one inside an edge of another included) get
 // the same nodes, and the meshes are joined into one.
