@@ -350,18 +350,18 @@ double edge_area_integral(const BoundaryEdge& edge, double t_from, double t_to, 
   // ellipse sweeps sense * a * b / 2 per unit of parameter, and what ref adds
   // is cross(c - ref, p(hi) - p(lo)) / 2 (a line: its start for c, nothing swept).
   const double sign = t_to >= t_from ? 1.0 : -1.0;
-  const Vec2 a = evaluate_point(edge, lo), b = evaluate_point(edge, hi);
+  const auto chord = [&] { return evaluate_point(edge, hi) - evaluate_point(edge, lo); };
   switch (curve_type(edge.curve)) {
-    case CurveType::Line: return sign * 0.5 * cross(a - ref, b - a);
+    case CurveType::Line: return sign * 0.5 * cross(evaluate_point(edge, lo) - ref, chord());
     case CurveType::Circle: {
       const CircleCurve& c = std::get<CircleCurve>(edge.curve);
-      return sign * 0.5 * (cross(c.center - ref, b - a) + c.sense * c.radius * c.radius * (hi - lo));
+      return sign * 0.5 * (cross(c.center - ref, chord()) + c.sense * c.radius * c.radius * (hi - lo));
     }
     case CurveType::Ellipse: {
       const EllipseCurve& e = std::get<EllipseCurve>(edge.curve);
-      return sign * 0.5 * (cross(e.center - ref, b - a) + e.sense * e.major_radius * e.minor_radius * (hi - lo));
+      return sign * 0.5 * (cross(e.center - ref, chord()) + e.sense * e.major_radius * e.minor_radius * (hi - lo));
     }
-    default: break;
+    default: break;  // B-splines and other curves: by quadrature below
   }
   std::vector<double> cuts{lo};
   for (double t : pieces(edge)) {

@@ -2216,9 +2216,9 @@ class Decomposer {
     return cached;
   }
 
-  // The outline's pieces and corner types; sampled: with points along the
-  // curved pieces (for the blocks handed out), else only their ends.
-  // The outline as pieces with the corner type at each piece's start.
+  // The outline as pieces with the corner type at each piece's start;
+  // sampled: with points along the curved pieces (for the blocks handed
+  // out), else only their ends.
   BlockRing flatten(const Outline& o, bool sampled = false) const {
     BlockRing flat;
     // Per piece: the arm of the cross it leaves its start along and arrives

@@ -181,11 +181,11 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
 }  // namespace
 
 DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options) {
-  FaceAxis medial = compute_face_medial_axis(face);
-  const MeshFlow flow = compute_mesh_flow(medial.face, medial.axis);
-  Decomposition decomposition = decompose(medial.face, medial.axis, flow, options);
-  if (!medial.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), medial.note);
-  return {std::move(medial.face), std::move(medial.axis), std::move(decomposition)};
+  StageSeconds untimed;
+  FlowOfFace f = flow_of_face(face, untimed);
+  Decomposition decomposition = decompose(f.face, f.axis, f.flow, options);
+  if (!f.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), f.note);
+  return {std::move(f.face), std::move(f.axis), std::move(decomposition)};
 }
 
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
