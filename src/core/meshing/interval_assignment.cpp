@@ -30,9 +30,43 @@ constexpr double kTimeLimitSeconds = 10.0;
 constexpr int kPlainRows = 2000;
 constexpr int kPlainNodes = 200;
 
-// Column -> coefficient; a std::map keeps rows deterministic and lets a
-// segment that appears on opposite sides of one block cancel out.
-using LinearExpr = std::map<int, double>;
+// Column -> coefficient, in column order: rows come out deterministic, and a
+// segment that appears on opposite sides of one block cancels out. A sorted
+// vector rather than a std::map: columns mostly arrive in increasing order,
+// so an entry is nearly always appended, with no node to allocate.
+class LinearExpr {
+ public:
+  using Entry = std::pair<int, double>;
+  LinearExpr() = default;
+  LinearExpr(int col, double coef) : entries_{{col, coef}} {}
+
+  // The coefficient of `col`, added as 0 if absent.
+  double& operator[](int col) {
+    if (entries_.empty() || entries_.back().first < col) return entries_.emplace_back(col, 0.0).second;
+    const auto it = find(col);
+    if (it != entries_.end() && it->first == col) return it->second;
+    return entries_.insert(it, Entry{col, 0.0})->second;
+  }
+  double at(int col) const {
+    const auto it = find(col);
+    if (it == entries_.end() || it->first != col)
+      throw std::out_of_range("LinearExpr: no column " + std::to_string(col));
+    return it->second;
+  }
+  bool empty() const { return entries_.empty(); }
+  std::vector<Entry>::const_iterator begin() const { return entries_.begin(); }
+  std::vector<Entry>::const_iterator end() const { return entries_.end(); }
+
+ private:
+  std::vector<Entry>::iterator find(int col) {
+    return std::lower_bound(entries_.begin(), entries_.end(), col, [](const Entry& e, int c) { return e.first < c; });
+  }
+  std::vector<Entry>::const_iterator find(int col) const {
+    return std::lower_bound(entries_.begin(), entries_.end(), col, [](const Entry& e, int c) { return e.first < c; });
+  }
+
+  std::vector<Entry> entries_;
+};
 
 void add_to(LinearExpr& e, const LinearExpr& other, double factor) {
   for (const auto& [col, coef] : other) e[col] += factor * coef;
@@ -45,7 +79,7 @@ LinearExpr difference(const LinearExpr& a, const LinearExpr& b) {
 }
 
 LinearExpr column(int col) {
-  return LinearExpr{{col, 1.0}};
+  return LinearExpr(col, 1.0);
 }
 
 std::string block_name(size_t b) {
@@ -257,20 +291,20 @@ bool integral(const OsiSolverInterface& solver, const double* x) {
 Model::Outcome Model::solve() const {
   const int n_cols = static_cast<int>(columns());
   const int n_rows = static_cast<int>(rows_.size());
-  // Compressed sparse columns, as loadProblem takes them.
-  std::vector<std::vector<std::pair<int, double>>> by_column(n_cols);
+  // Compressed sparse columns, as loadProblem takes them: count each
+  // column's entries, then fill them in row order.
+  std::vector<CoinBigIndex> starts(n_cols + 1, 0);
+  for (const auto& row : rows_)
+    for (const auto& entry : row.first) ++starts[entry.first + 1];
+  for (int c = 0; c < n_cols; ++c) starts[c + 1] += starts[c];
+  std::vector<int> indices(starts[n_cols]);
+  std::vector<double> values(starts[n_cols]);
+  std::vector<CoinBigIndex> next(starts.begin(), starts.end() - 1);
   for (int r = 0; r < n_rows; ++r)
-    for (const auto& [col, coef] : rows_[r].first) by_column[col].push_back({r, coef});
-  std::vector<CoinBigIndex> starts{0};
-  std::vector<int> indices;
-  std::vector<double> values;
-  for (const auto& entries : by_column) {
-    for (const auto& [row, coef] : entries) {
-      indices.push_back(row);
-      values.push_back(coef);
+    for (const auto& [col, coef] : rows_[r].first) {
+      indices[next[col]] = r;
+      values[next[col]++] = coef;
     }
-    starts.push_back(static_cast<CoinBigIndex>(indices.size()));
-  }
   std::vector<double> rhs(n_rows);
   for (int r = 0; r < n_rows; ++r) rhs[r] = rows_[r].second;
   std::vector<double> cost = cost_;
