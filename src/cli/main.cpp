@@ -183,9 +183,9 @@ Options parse(int argc, char** argv) {
 }
 
 void run_singularities(const Options& o, const mm::FaceModel& given) {
-  const mm::FaceAxis medial = mm::compute_face_medial_axis(given);
-  const mm::FaceModel& face = medial.face;
-  const mm::MeshFlow flow = mm::compute_mesh_flow(face, medial.axis);
+  const mm::FaceFlow analysed = mm::face_flow(given);
+  const mm::FaceModel& face = analysed.face;
+  const mm::MeshFlow& flow = analysed.flow;
   std::vector<mm::SingularityGroup> groups;
   if (o.merge) groups = mm::merge_singularities(flow.singularities, *o.merge);
   std::vector<mm::SingularityMark> marks;
@@ -195,7 +195,7 @@ void run_singularities(const Options& o, const mm::FaceModel& given) {
     for (const auto& s : flow.singularities) marks.push_back({s.p, s.k});
   }
   nlohmann::json report = mm::singularity_report_json(face, flow, o.merge ? &groups : nullptr);
-  if (!medial.note.empty()) report["notes"] = {medial.note};
+  if (!analysed.note.empty()) report["notes"] = {analysed.note};
   if (o.json) {
     std::cout << report.dump(2) << "\n";
   } else {

@@ -171,17 +171,17 @@ PYBIND11_MODULE(_medialmesh, m) {
       "analyse",
       [](const std::string& brep, const std::string& name, std::optional<double> merge_factor,
          std::optional<double> mesh_size) {
-        const mm::FaceAxis medial = mm::compute_face_medial_axis(mm::face_model_from_brep_string(brep, name));
-        const mm::FaceModel& face = medial.face;
-        const mm::MedialAxis& axis = medial.axis;
-        const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
+        const mm::FaceFlow analysed = mm::face_flow(mm::face_model_from_brep_string(brep, name));
+        const mm::FaceModel& face = analysed.face;
+        const mm::MedialAxis& axis = analysed.axis;
+        const mm::MeshFlow& flow = analysed.flow;
         std::vector<mm::SingularityGroup> groups;
         const bool merge = merge_factor || mesh_size;
         if (merge)
           groups = mm::merge_singularities(flow.singularities, {merge_factor.value_or(0.75), mesh_size.value_or(0.0)});
         nlohmann::json report = mm::singularity_report_json(face, flow, merge ? &groups : nullptr);
         report["medial_axis"] = mm::medial_report_json(axis);
-        if (!medial.note.empty()) report["notes"] = {medial.note};
+        if (!analysed.note.empty()) report["notes"] = {analysed.note};
         report["frame"] = mm::frame_json(face.frame);
         return to_python(report);
       },

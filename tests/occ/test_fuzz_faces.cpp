@@ -201,6 +201,26 @@ TEST(FuzzFaces, EachGetsAValidMesh) {
 // The area between a closed curve and ref, integrated from ref at its own
 // end round to it (a tiny aerofoil's curve, its ends 6e-7 apart across the
 // trailing edge): right, and quick, however near the ends lie to ref.
+// bspline_23_1422 (fuzz seed 23): an oval, one closed B-spline whose seam
+// bends by 0.075 degrees (taken as smooth) with a jump in curvature. The
+// disc ending the branch into the seam reaches over the seam by 1.5e-8, so
+// the branch was pruned as a ripple and the flow met a k = -2 where the
+// touches jump past it: a flow switch of k = -2, a self-check failure. The
+// flow's fallback builds axis and flow again with the kink as a corner: four
+// k = -1, and the mesh of a round face.
+TEST(FuzzFaces, AFlowThatFailsAtAKinkTakenAsSmoothIsBuiltWithTheKinkAsACorner) {
+  const FaceModel face = test::data_face("fuzz/bspline_23_1422");
+  const FaceFlow analysed = face_flow(face);
+  EXPECT_EQ(analysed.flow.sum_k(), predicted_sum_k(face));
+  ASSERT_EQ(analysed.flow.singularities.size(), 4u);
+  for (const Singularity& s : analysed.flow.singularities) EXPECT_EQ(s.k, -1);
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_23_1422");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.5);
+  ASSERT_EQ(m->quality.irregular_interior.size(), 4u);
+  for (const IrregularNode& n : m->quality.irregular_interior) EXPECT_EQ(n.elements, 3);
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();

@@ -97,27 +97,46 @@ std::string settings_text(const PipelineOptions& options) {
   return text.str();
 }
 
-// The face as the medial axis took it (its kinks as corners if that was
-// needed), its axis and mesh flow.
-struct FlowOfFace {
-  FaceModel face;
-  MedialAxis axis;
-  std::string note;
-  MeshFlow flow;
-};
-
-FlowOfFace flow_of_face(const FaceModel& face, StageSeconds& stages) {
+// face_flow, its stages timed into `stages`.
+FaceFlow flow_of_face(const FaceModel& face, StageSeconds& stages) {
   auto t = Clock::now();
   FaceAxis medial = compute_face_medial_axis(face);
-  FlowOfFace result{std::move(medial.face), std::move(medial.axis), std::move(medial.note), {}};
+  FaceFlow result{std::move(medial.face), std::move(medial.axis), {}, std::move(medial.note)};
   add_stage(stages, "medial_axis", seconds_since(t));
   t = Clock::now();
-  result.flow = compute_mesh_flow(result.face, result.axis);
+  try {
+    result.flow = compute_mesh_flow(result.face, result.axis);
+  } catch (const SelfCheckError& first) {
+    // A join taken as smooth may still bend enough for a disc tangent on
+    // one side to reach over the other: the axis then ends short of it (the
+    // branch to a closed B-spline's seam taken for a ripple and pruned) and
+    // the flow no longer balances there. With the kinks as corners both are
+    // exact, as compute_face_medial_axis does for a failed axis.
+    FaceModel kinked = with_kinks_as_corners(face);
+    const std::size_t kinks = kinked.corners.size() - face.corners.size();
+    if (kinked.corners.size() == result.face.corners.size()) throw;  // no kink left to take as a corner
+    add_stage(stages, "singularities", seconds_since(t));
+    t = Clock::now();
+    MedialAxis axis;
+    MeshFlow flow;
+    try {
+      axis = compute_medial_axis(kinked);
+      add_stage(stages, "medial_axis", seconds_since(t));
+      t = Clock::now();
+      flow = compute_mesh_flow(kinked, axis);
+    } catch (const SelfCheckError&) {
+      throw first;
+    }
+    result = {std::move(kinked), std::move(axis), std::move(flow),
+              std::string("the mesh flow failed its self-check (") + first.what() + ") with joins up to 0.5 " +
+                  "degrees off tangent taken as smooth; built with " + std::to_string(kinks) +
+                  " such joins as corners"};
+  }
   add_stage(stages, "singularities", seconds_since(t));
   return result;
 }
 
-Decomposition decompose_flow(const FlowOfFace& f, const PipelineOptions& options, StageSeconds& stages) {
+Decomposition decompose_flow(const FaceFlow& f, const PipelineOptions& options, StageSeconds& stages) {
   const auto t = Clock::now();
   DecompositionOptions decomposition;
   decomposition.merge = options.merge;
@@ -135,10 +154,10 @@ Decomposition decompose_flow(const FlowOfFace& f, const PipelineOptions& options
 // orthogonally, and on each face the groups of more than one singularity
 // that merging makes. Two settings alike in this decompose alike.
 using DecompositionKey = std::tuple<bool, bool, bool, std::vector<std::vector<std::vector<int>>>>;
-DecompositionKey decomposition_key(const std::vector<const FlowOfFace*>& flows, const PipelineOptions& options) {
+DecompositionKey decomposition_key(const std::vector<const FaceFlow*>& flows, const PipelineOptions& options) {
   DecompositionKey key{
       options.split_concave_corners, options.submap_corners_follow_turning, options.orthogonal_joins, {}};
-  for (const FlowOfFace* f : flows) {
+  for (const FaceFlow* f : flows) {
     auto& groups = std::get<3>(key).emplace_back();
     if (!options.merge) continue;
     for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.tolerance))
@@ -154,7 +173,7 @@ DecompositionKey decomposition_key(const std::vector<const FlowOfFace*>& flows, 
 // on (empty if none was needed); the time the failed attempts took is
 // added to `stages` as "failed_attempts".
 template <typename Attempt>
-std::string with_fallbacks(const PipelineOptions& options, const std::vector<const FlowOfFace*>& flows,
+std::string with_fallbacks(const PipelineOptions& options, const std::vector<const FaceFlow*>& flows,
                            StageSeconds& stages, Attempt attempt) {
   auto start = Clock::now();
   try {
@@ -180,9 +199,14 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
 
 }  // namespace
 
+FaceFlow face_flow(const FaceModel& face) {
+  StageSeconds untimed;
+  return flow_of_face(face, untimed);
+}
+
 DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options) {
   StageSeconds untimed;
-  FlowOfFace f = flow_of_face(face, untimed);
+  FaceFlow f = flow_of_face(face, untimed);
   Decomposition decomposition = decompose(f.face, f.axis, f.flow, options);
   if (!f.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), f.note);
   return {std::move(f.face), std::move(f.axis), std::move(decomposition)};
@@ -192,7 +216,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   const auto start = Clock::now();
   MeshedFace result;
   StageSeconds stages;
-  const FlowOfFace flow = flow_of_face(face, stages);
+  const FaceFlow flow = flow_of_face(face, stages);
   StageSeconds passed;  // the stages of the attempt that passed
   const std::string note = with_fallbacks(options, {&flow}, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
@@ -217,12 +241,12 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   const auto start = Clock::now();
   MeshedFaces result;
   StageSeconds stages;
-  std::vector<FlowOfFace> flows;
+  std::vector<FaceFlow> flows;
   for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
   std::vector<FaceModel> taken;  // the faces as their medial axes took them
-  for (const FlowOfFace& f : flows) taken.push_back(f.face);
-  std::vector<const FlowOfFace*> flow_list;
-  for (const FlowOfFace& f : flows) flow_list.push_back(&f);
+  for (const FaceFlow& f : flows) taken.push_back(f.face);
+  std::vector<const FaceFlow*> flow_list;
+  for (const FaceFlow& f : flows) flow_list.push_back(&f);
   std::vector<Decomposition> decompositions;
   FaceSetBlockMesh blocks;
   StageSeconds passed;  // the decomposition time of the attempt that passed

@@ -6,6 +6,7 @@
 #include "meshing/merge_faces.hpp"
 #include "meshing/mesh_blocks.hpp"
 #include "quality/quality.hpp"
+#include "singularity/mesh_flow.hpp"
 
 namespace mm {
 
@@ -30,6 +31,20 @@ struct MeshedFace {
 // merging (factor 0.5, 0.25, none), then splits at every concave corner (a
 // note in blocks.notes says when a fallback was used).
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
+
+// The face as the medial axis took it, its axis and its mesh flow, as
+// `medialmesh singularities` and the Python analyse() give them. The note
+// says when a fallback was needed: the axis built with the face's kinks
+// (joins up to 0.5 degrees off tangent) as corners, because the axis
+// (compute_face_medial_axis) or else the flow failed its self-check. Throws
+// SelfCheckError when that fails too.
+struct FaceFlow {
+  FaceModel face;
+  MedialAxis axis;
+  MeshFlow flow;
+  std::string note;  // empty, or what was done and why
+};
+FaceFlow face_flow(const FaceModel& face);
 
 // The decomposition alone, as `medialmesh decompose` and the Python
 // decompose() give it: the face as the medial axis took it (its kinks as
