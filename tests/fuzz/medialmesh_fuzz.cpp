@@ -427,20 +427,24 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
     return {kBroken, m.str()};
   }
   try {
+    // Axis and flow through the pipeline's entry points, with the fallbacks
+    // a user's face gets (kinks as corners where the axis or flow fails).
     enter("medial axis");
-    const mm::MedialAxis axis = mm::compute_medial_axis(face);
-    const ::testing::AssertionResult valid = mm::test::medial_axis_is_valid(face, axis, 1e-6);
+    mm::FaceAxis medial = mm::compute_face_medial_axis(face);
+    const ::testing::AssertionResult valid = mm::test::medial_axis_is_valid(medial.face, medial.axis, 1e-6);
     if (!valid)
       return {kBroken, std::string("medial axis passed its self-check but not the tests' checks: ") + valid.message()};
     enter("mesh flow");
-    const mm::MeshFlow flow = mm::compute_mesh_flow(face, axis);
-    if (flow.sum_k() != mm::predicted_sum_k(face)) {
+    const mm::FaceFlow flowed = mm::flow_of_axis(face, std::move(medial));
+    const mm::FaceModel& taken = flowed.face;
+    const mm::MeshFlow& flow = flowed.flow;
+    if (flow.sum_k() != mm::predicted_sum_k(taken)) {
       return {kBroken,
-              "sum of k " + std::to_string(flow.sum_k()) + ", predicted " + std::to_string(mm::predicted_sum_k(face))};
+              "sum of k " + std::to_string(flow.sum_k()) + ", predicted " + std::to_string(mm::predicted_sum_k(taken))};
     }
     enter("decomposition");
-    const mm::Decomposition d = mm::decompose(face, axis, flow, {});
-    const std::vector<std::string> problems = mm::test::decomposition_problems(face, flow, d);
+    const mm::Decomposition d = mm::decompose(taken, flowed.axis, flow, {});
+    const std::vector<std::string> problems = mm::test::decomposition_problems(taken, flow, d);
     if (!problems.empty()) {
       // A fallback that says it could not give a singularity its block is loud, not wrong.
       return {d.fallback ? kSelfCheck : kBroken, "decomposition: " + problems.front()};

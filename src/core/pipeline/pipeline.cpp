@@ -97,41 +97,14 @@ std::string settings_text(const PipelineOptions& options) {
   return text.str();
 }
 
-// face_flow, its stages timed into `stages`.
+// face_flow, its stages timed into `stages` (a fallback's second axis
+// with the singularities).
 FaceFlow flow_of_face(const FaceModel& face, StageSeconds& stages) {
   auto t = Clock::now();
   FaceAxis medial = compute_face_medial_axis(face);
-  FaceFlow result{std::move(medial.face), std::move(medial.axis), {}, std::move(medial.note)};
   add_stage(stages, "medial_axis", seconds_since(t));
   t = Clock::now();
-  try {
-    result.flow = compute_mesh_flow(result.face, result.axis);
-  } catch (const SelfCheckError& first) {
-    // A join taken as smooth may still bend enough for a disc tangent on
-    // one side to reach over the other: the axis then ends short of it (the
-    // branch to a closed B-spline's seam taken for a ripple and pruned) and
-    // the flow no longer balances there. With the kinks as corners both are
-    // exact, as compute_face_medial_axis does for a failed axis.
-    FaceModel kinked = with_kinks_as_corners(face);
-    const std::size_t kinks = kinked.corners.size() - face.corners.size();
-    if (kinked.corners.size() == result.face.corners.size()) throw;  // no kink left to take as a corner
-    add_stage(stages, "singularities", seconds_since(t));
-    t = Clock::now();
-    MedialAxis axis;
-    MeshFlow flow;
-    try {
-      axis = compute_medial_axis(kinked);
-      add_stage(stages, "medial_axis", seconds_since(t));
-      t = Clock::now();
-      flow = compute_mesh_flow(kinked, axis);
-    } catch (const SelfCheckError&) {
-      throw first;
-    }
-    result = {std::move(kinked), std::move(axis), std::move(flow),
-              std::string("the mesh flow failed its self-check (") + first.what() + ") with joins up to 0.5 " +
-                  "degrees off tangent taken as smooth; built with " + std::to_string(kinks) +
-                  " such joins as corners"};
-  }
+  FaceFlow result = flow_of_axis(face, std::move(medial));
   add_stage(stages, "singularities", seconds_since(t));
   return result;
 }
@@ -199,9 +172,34 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
 
 }  // namespace
 
+FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
+  try {
+    MeshFlow flow = compute_mesh_flow(medial.face, medial.axis);
+    return {std::move(medial.face), std::move(medial.axis), std::move(flow), std::move(medial.note)};
+  } catch (const SelfCheckError& first) {
+    // A join taken as smooth may still bend enough for a disc tangent on
+    // one side to reach over the other: the axis then ends short of it (the
+    // branch to a closed B-spline's seam taken for a ripple and pruned) and
+    // the flow no longer balances there. With the kinks as corners both are
+    // exact, as compute_face_medial_axis does for a failed axis.
+    FaceModel kinked = with_kinks_as_corners(face);
+    if (kinked.corners.size() == medial.face.corners.size()) throw;  // no kink left to take as a corner
+    const std::size_t kinks = kinked.corners.size() - face.corners.size();
+    try {
+      MedialAxis axis = compute_medial_axis(kinked);
+      MeshFlow flow = compute_mesh_flow(kinked, axis);
+      return {std::move(kinked), std::move(axis), std::move(flow),
+              std::string("the mesh flow failed its self-check (") + first.what() + ") with joins up to 0.5 " +
+                  "degrees off tangent taken as smooth; built with " + std::to_string(kinks) +
+                  " such joins as corners"};
+    } catch (const SelfCheckError&) {
+      throw first;
+    }
+  }
+}
+
 FaceFlow face_flow(const FaceModel& face) {
-  StageSeconds untimed;
-  return flow_of_face(face, untimed);
+  return flow_of_axis(face, compute_face_medial_axis(face));
 }
 
 DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options) {

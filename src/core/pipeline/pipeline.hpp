@@ -45,6 +45,8 @@ struct FaceFlow {
   std::string note;  // empty, or what was done and why
 };
 FaceFlow face_flow(const FaceModel& face);
+// The same from the face's axis as compute_face_medial_axis(face) gave it.
+FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial);
 
 // The decomposition alone, as `medialmesh decompose` and the Python
 // decompose() give it: the face as the medial axis took it (its kinks as
