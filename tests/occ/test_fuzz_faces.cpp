@@ -221,6 +221,31 @@ TEST(FuzzFaces, AFlowThatFailsAtAKinkTakenAsSmoothIsBuiltWithTheKinkAsACorner) {
   for (const IrregularNode& n : m->quality.irregular_interior) EXPECT_EQ(n.elements, 3);
 }
 
+// bspline_23_682 (fuzz seed 23): a closed B-spline outline with a round
+// hole, its seam a reflex corner of 186 degrees. A stub of the chords'
+// diagram between two chords of the lobe below the corner found the lobe's
+// curvature peak too, and was kept as a branch beside the real one: a
+// junction where there is none (its second place 4e-4 beyond its radius, a
+// medial axis self-check failure) and two ends on one peak. One branch ends
+// at a peak, the one whose end is nearest its centre: two junctions and two
+// curvature contacts, a ring's mesh with no irregular interior node.
+TEST(FuzzFaces, OneBranchEndsAtEachCurvaturePeak) {
+  const FaceModel face = test::data_face("fuzz/bspline_23_682");
+  const std::optional<MedialAxis> axis = axis_with_its_flow(face);
+  ASSERT_TRUE(axis);
+  std::vector<Vec2> peaks;
+  for (const MedialVertex& v : axis->vertices) {
+    if (v.kind != MedialVertexKind::CurvatureContact) continue;
+    for (Vec2 p : peaks) EXPECT_GT(distance(p, v.p), 1e-6 * face.size) << "two ends at one peak";
+    peaks.push_back(v.p);
+  }
+  EXPECT_EQ(peaks.size(), 2u);
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_23_682");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.5);
+  EXPECT_TRUE(m->quality.irregular_interior.empty());
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();

@@ -259,11 +259,33 @@ class Builder {
     return best;
   }
 
+  // Curvature contacts of end nodes already found, by node, with the edge
+  // the node ended then (pruning may leave a junction as an end).
+  using ContactMemo = std::map<int, std::pair<int, std::optional<MedialVertex>>>;
+
   // A branch from a curvature peak is medial only if the disc at the centre of
-  // curvature holds no boundary: else another edge cuts it off first.
-  bool curvature_end_is_medial(int node) const {
-    const std::optional<MedialVertex> v = curvature_contact(node);
-    return v && disc_is_empty(v->p, v->r);
+  // curvature holds no boundary (else another edge cuts it off first), and
+  // only one branch ends at a peak: a stub of the diagram between two chords
+  // of one curve, beside the branch into a peak, finds that peak too (a lobe
+  // beside a nearly flat reflex corner, fuzz bspline_23_682). The end nearer
+  // the peak's centre is its branch; only ends nearer than this one are asked.
+  bool curvature_end_is_medial(int node, ContactMemo& memo) const {
+    const auto contact = [&](int n) -> const std::optional<MedialVertex>& {
+      auto it = memo.find(n);
+      if (it == memo.end() || it->second.first != nodes_[n].edges.front())
+        it = memo.insert_or_assign(n, std::make_pair(nodes_[n].edges.front(), curvature_contact(n))).first;
+      return it->second.second;
+    };
+    const std::optional<MedialVertex> v = contact(node);
+    if (!v || !disc_is_empty(v->p, v->r)) return false;
+    const double gap = distance(node_point(node), v->p);
+    for (std::size_t other = 0; other < nodes_.size(); ++other) {
+      if (static_cast<int>(other) == node || nodes_[other].edges.size() != 1) continue;
+      if (distance(node_point(static_cast<int>(other)), v->p) >= gap) continue;
+      const std::optional<MedialVertex>& w = contact(static_cast<int>(other));
+      if (w && distance(w->p, v->p) <= kSamePlace * size()) return false;
+    }
+    return true;
   }
 
   // A branch into a nearly flat convex corner (its flare) whose last
@@ -295,6 +317,7 @@ class Builder {
   // contact) to the next junction whose medial angle stays below kRippleAngle
   // or whose end is no medial point, until none is left.
   void prune_ripple_branches() {
+    ContactMemo contacts;
     bool changed = true;
     while (changed) {
       changed = false;
@@ -314,7 +337,7 @@ class Builder {
           e = nodes_[node].edges[0] == e ? nodes_[node].edges[1] : nodes_[node].edges[0];
         }
         if (nodes_[node].edges.size() == 1) continue;
-        if (largest >= kRippleAngle && curvature_end_is_medial(static_cast<int>(n))) continue;
+        if (largest >= kRippleAngle && curvature_end_is_medial(static_cast<int>(n), contacts)) continue;
         // A cut-short flare keeps its branch if the branch is more than a
         // stub beside a junction (there the junction touches the corner).
         double length = 0.0;
