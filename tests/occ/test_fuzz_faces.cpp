@@ -591,7 +591,9 @@ TEST(FuzzFaces, DecompositionsTileTheFace) {
     const auto problems = test::decomposition_problems(face, flow, d);
     EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
     EXPECT_EQ(d.fallback, fallback) << name;
-    if (d.fallback) EXPECT_FALSE(d.notes.empty()) << name << ": a fallback must say why";
+    if (d.fallback) {
+      EXPECT_FALSE(d.notes.empty()) << name << ": a fallback must say why";
+    }
     double area = 0.0;
     for (const Block& b : d.blocks) area += b.area;
     EXPECT_NEAR(area, face.area, 1e-9 * face.area) << name;
