@@ -259,6 +259,29 @@ class Builder {
     return best;
   }
 
+  // The branch from end node n up to the first node that is not a plain
+  // point of an edge: its Voronoi edges, that node, and the largest medial
+  // angle along it.
+  struct Branch {
+    std::vector<int> edges;
+    int far = -1;
+    double largest = 0.0;
+  };
+  Branch branch_from(int n) const {
+    Branch branch;
+    int node = n, e = nodes_[n].edges.front();
+    while (true) {
+      branch.edges.push_back(e);
+      const auto [a, b] = edge_nodes_.at(e);
+      node = a == node ? b : a;
+      branch.largest = std::max(branch.largest, medial_angle_at(e, node_point(node)));
+      if (nodes_[node].edges.size() != 2) break;
+      e = nodes_[node].edges[0] == e ? nodes_[node].edges[1] : nodes_[node].edges[0];
+    }
+    branch.far = node;
+    return branch;
+  }
+
   // Curvature contacts of end nodes already found, by node, with the edge
   // the node ended then (pruning may leave a junction as an end).
   using ContactMemo = std::map<int, std::pair<int, std::optional<MedialVertex>>>;
@@ -268,7 +291,10 @@ class Builder {
   // only one branch ends at a peak: a stub of the diagram between two chords
   // of one curve, beside the branch into a peak, finds that peak too (a lobe
   // beside a nearly flat reflex corner, fuzz bspline_23_682). The end nearer
-  // the peak's centre is its branch; only ends nearer than this one are asked.
+  // the peak's centre is its branch, unless that end's branch is a ripple,
+  // pruned itself (fuzz bspline_26_602: a ripple's stub at a lobe's peak
+  // took the lobe's whole branch with it). Only ends nearer than this one
+  // are asked.
   bool curvature_end_is_medial(int node, ContactMemo& memo) const {
     const auto contact = [&](int n) -> const std::optional<MedialVertex>& {
       auto it = memo.find(n);
@@ -282,6 +308,7 @@ class Builder {
     for (std::size_t other = 0; other < nodes_.size(); ++other) {
       if (static_cast<int>(other) == node || nodes_[other].edges.size() != 1) continue;
       if (distance(node_point(static_cast<int>(other)), v->p) >= gap) continue;
+      if (branch_from(static_cast<int>(other)).largest < kRippleAngle) continue;
       const std::optional<MedialVertex>& w = contact(static_cast<int>(other));
       if (w && distance(w->p, v->p) <= kSamePlace * size()) return false;
     }
@@ -325,23 +352,14 @@ class Builder {
         if (nodes_[n].edges.size() != 1) continue;
         if (graph_.vertices[node_vertex_[n]].r <= 1e-6 * size() || finite_contact_for(static_cast<int>(n)) >= 0)
           continue;
-        std::vector<int> branch;
-        int node = static_cast<int>(n), e = nodes_[n].edges.front();
-        double largest = 0.0;
-        while (true) {
-          branch.push_back(e);
-          const auto [a, b] = edge_nodes_.at(e);
-          node = a == node ? b : a;
-          largest = std::max(largest, medial_angle_at(e, node_point(node)));
-          if (nodes_[node].edges.size() != 2) break;
-          e = nodes_[node].edges[0] == e ? nodes_[node].edges[1] : nodes_[node].edges[0];
-        }
-        if (nodes_[node].edges.size() == 1) continue;
+        const Branch branch = branch_from(static_cast<int>(n));
+        if (nodes_[branch.far].edges.size() == 1) continue;
+        const double largest = branch.largest;
         if (largest >= kRippleAngle && curvature_end_is_medial(static_cast<int>(n), contacts)) continue;
         // A cut-short flare keeps its branch if the branch is more than a
         // stub beside a junction (there the junction touches the corner).
         double length = 0.0;
-        for (int f : branch)
+        for (int f : branch.edges)
           length += distance(node_point(edge_nodes_.at(f).first), node_point(edge_nodes_.at(f).second));
         if (largest >= kRippleAngle && length > 0.25 * graph_.vertices[node_vertex_[n]].r) {
           if (const int corner = cut_short_flare(static_cast<int>(n)); corner >= 0) {
@@ -349,7 +367,7 @@ class Builder {
             continue;
           }
         }
-        for (int f : branch) {
+        for (int f : branch.edges) {
           const auto [a, b] = edge_nodes_.at(f);
           for (int end : {a, b}) {
             auto& list = nodes_[end].edges;
