@@ -527,6 +527,11 @@ FaceModel build_face_model(RawFace raw) {
   return face;
 }
 
+std::string kinks_as_corners_note(const std::string& what, const std::string& failure, std::size_t kinks) {
+  return what + " failed its self-check (" + failure + ") with joins up to 0.5 degrees off tangent taken as " +
+         "smooth; built with " + std::to_string(kinks) + " such joins as corners";
+}
+
 FaceModel with_kinks_as_corners(const FaceModel& face) {
   FaceModel kinked = face;
   kinked.corners = find_corners(face, kKinkAngle);

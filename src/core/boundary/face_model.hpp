@@ -87,6 +87,9 @@ FaceModel build_face_model(RawFace raw);
 // within the 0.5 degrees build_face_model takes as smooth too: the face as
 // its curves are, for when taking a kink as smooth misleads a later stage.
 FaceModel with_kinks_as_corners(const FaceModel& face);
+// The note a stage hands on when `what` (e.g. "the medial axis") failed its
+// self-check with `failure` and passed with `kinks` such joins as corners.
+std::string kinks_as_corners_note(const std::string& what, const std::string& failure, std::size_t kinks);
 
 // Sum of singularity indices every quad mesh of the face must have
 // (Poincare-Hopf): sum over corners of (2 - nc) minus 4 times the Euler characteristic.

@@ -1487,10 +1487,7 @@ FaceAxis compute_face_medial_axis(const FaceModel& face) {
     if (kinks == 0) throw;
     try {
       MedialAxis axis = compute_medial_axis(kinked);
-      return {std::move(kinked), std::move(axis),
-              std::string("the medial axis failed its self-check (") + first.what() + ") with joins up to 0.5 " +
-                  "degrees off tangent taken as smooth; built with " + std::to_string(kinks) +
-                  " such joins as corners"};
+      return {std::move(kinked), std::move(axis), kinks_as_corners_note("the medial axis", first.what(), kinks)};
     } catch (const SelfCheckError&) {
       throw first;
     }

@@ -189,9 +189,7 @@ FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
       MedialAxis axis = compute_medial_axis(kinked);
       MeshFlow flow = compute_mesh_flow(kinked, axis);
       return {std::move(kinked), std::move(axis), std::move(flow),
-              std::string("the mesh flow failed its self-check (") + first.what() + ") with joins up to 0.5 " +
-                  "degrees off tangent taken as smooth; built with " + std::to_string(kinks) +
-                  " such joins as corners"};
+              kinks_as_corners_note("the mesh flow", first.what(), kinks)};
     } catch (const SelfCheckError&) {
       throw first;
     }
@@ -203,8 +201,7 @@ FaceFlow face_flow(const FaceModel& face) {
 }
 
 DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options) {
-  StageSeconds untimed;
-  FaceFlow f = flow_of_face(face, untimed);
+  FaceFlow f = face_flow(face);
   Decomposition decomposition = decompose(f.face, f.axis, f.flow, options);
   if (!f.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), f.note);
   return {std::move(f.face), std::move(f.axis), std::move(decomposition)};

@@ -49,9 +49,8 @@ FaceFlow face_flow(const FaceModel& face);
 FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial);
 
 // The decomposition alone, as `medialmesh decompose` and the Python
-// decompose() give it: the face as the medial axis took it (its kinks as
-// corners if that was needed), the axis, and the blocks, the axis's note
-// first among their notes. No fallbacks: a failed check throws.
+// decompose() give it: the face, axis and note of face_flow, and the
+// blocks, that note first among their notes. No fallbacks: a failed check throws.
 struct DecomposedFace {
   FaceModel face;
   MedialAxis axis;
