@@ -42,8 +42,9 @@ TEST(FaceModel, EdgeAreaIntegralMatchesTheNumericIntegral) {
     const int sense = unit(rng) < 0.5 ? 1 : -1;
     std::vector<BoundaryEdge> edges;
     edges.push_back(line(c, {coord(rng), coord(rng)}));
-    edges.push_back({CircleCurve{c, 0.5 + unit(rng), 6.0 * unit(rng), sense}, 0.0, 6.0});
-    edges.push_back({EllipseCurve{c, normalized({coord(rng), coord(rng)}), 2.0, 0.5 + unit(rng), sense}, 0.0, 6.0});
+    edges.push_back({CircleCurve{c, 0.5 + unit(rng), 6.0 * unit(rng), sense}, 0.0, 6.0, 0, {}, {}});
+    edges.push_back(
+        {EllipseCurve{c, normalized({coord(rng), coord(rng)}), 2.0, 0.5 + unit(rng), sense}, 0.0, 6.0, 0, {}, {}});
     for (const BoundaryEdge& e : edges) {
       const double from = e.t_start + (e.t_end - e.t_start) * unit(rng);
       const double to = e.t_start + (e.t_end - e.t_start) * unit(rng);
