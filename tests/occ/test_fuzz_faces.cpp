@@ -255,6 +255,28 @@ TEST(FuzzFaces, OneBranchEndsAtEachCurvaturePeak) {
   EXPECT_TRUE(m->quality.irregular_interior.empty());
 }
 
+// bspline_29_1052 (fuzz seed 29): a closed B-spline blob with a 176-degree
+// corner at its seam. The default chords gave the branch from the corner a
+// spurious stub to a ripple, and the junction there touched its third place
+// 1.2e-4 off its radius while no boundary lay inside any disc: the axis was
+// not built again from finer chords (only boundary inside a disc or a wrong
+// topology asked for that) and its radius check failed. The finer chords'
+// axis: the corner's flare, four curvature contacts, three junctions.
+TEST(FuzzFaces, ADiscMissingItsTouchingPlaceIsBuiltAgainFromFinerChords) {
+  const FaceModel face = test::data_face("fuzz/bspline_29_1052");
+  const std::optional<MedialAxis> axis = axis_with_its_flow(face);
+  ASSERT_TRUE(axis);
+  std::map<MedialVertexKind, int> kinds;
+  for (const MedialVertex& v : axis->vertices) ++kinds[v.kind];
+  EXPECT_EQ(kinds[MedialVertexKind::Flare], 1);
+  EXPECT_EQ(kinds[MedialVertexKind::CurvatureContact], 4);
+  EXPECT_EQ(kinds[MedialVertexKind::Junction], 3);
+  EXPECT_EQ(axis->edges.size(), 7u);
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_29_1052");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.2);
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();

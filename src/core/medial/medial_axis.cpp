@@ -1430,6 +1430,27 @@ void repair_edge_points(const BoundaryIndex& index, const NearestBoundary& bound
   }
 }
 
+// One build of the axis from chords `fineness` times finer than the
+// default, with its edge points repaired, and what the checks make of it.
+struct CheckedAxis {
+  MedialAxis axis;
+  double violation = 0.0;  // before repair: how far boundary reaches into a disc
+  std::string problem;     // empty: the right topology
+  double error = 0.0;      // after repair: the largest radius error (radius_error)
+};
+
+CheckedAxis checked_axis(const FaceModel& face, double fineness, const BoundaryIndex& index,
+                         const NearestBoundary& boundary, double tolerance) {
+  CheckedAxis checked;
+  checked.axis = Builder(face, fineness).build();
+  std::vector<Vec2> nearest = nearest_points(boundary, checked.axis);
+  checked.violation = violation(nearest, checked.axis);
+  checked.problem = topology_problem(checked.axis, face);
+  repair_edge_points(index, boundary, tolerance, checked.axis, nearest);
+  checked.error = radius_error(nearest, checked.axis);
+  return checked;
+}
+
 }  // namespace
 
 double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
@@ -1439,40 +1460,35 @@ double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
 
 MedialAxis compute_medial_axis(const FaceModel& face) {
   const double tolerance = 1e-7 * face.size + face.tolerance;
-  const BoundaryIndex index(face);
-  const NearestBoundary boundary(index);  // built once for every check below
-  MedialAxis best = Builder(face, 1.0).build();
-  std::vector<Vec2> best_nearest = nearest_points(boundary, best);
-  double best_violation = violation(best_nearest, best);
-  std::string best_problem = topology_problem(best, face);  // empty: the right topology
-  double fineness = 1.0;
-  // Finer chords where a point is off or the axis has a cycle or a piece too
-  // many; an axis of the right topology outranks a more exact one.
-  for (int i = 0; i < kMaxRefinements && (best_violation > tolerance || !best_problem.empty()); ++i) {
-    fineness *= kRefinement;
-    MedialAxis finer = Builder(face, fineness).build();
-    std::vector<Vec2> finer_nearest = nearest_points(boundary, finer);
-    const double finer_violation = violation(finer_nearest, finer);
-    std::string finer_problem = topology_problem(finer, face);
-    const bool finer_whole = finer_problem.empty(), best_whole = best_problem.empty();
-    if (finer_whole > best_whole || (finer_whole == best_whole && finer_violation < best_violation)) {
-      best = std::move(finer), best_nearest = std::move(finer_nearest), best_violation = finer_violation;
-      best_problem = std::move(finer_problem);
-    }
-  }
-  repair_edge_points(index, boundary, tolerance, best, best_nearest);
   // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
   // both ways: no boundary inside a disc, and every disc touching it.
   const double allowed = 1e-6 * face.size + face.tolerance;
-  if (const double error = radius_error(best_nearest, best); error > allowed) {
+  const BoundaryIndex index(face);
+  const NearestBoundary boundary(index);  // built once for every check below
+  CheckedAxis best = checked_axis(face, 1.0, index, boundary, tolerance);
+  double fineness = 1.0;
+  // Finer chords where a point is off, a disc misses its touching places
+  // (a junction the chords put beside a spurious ripple branch:
+  // bspline_29_1052) or the axis has a cycle or a piece too many. An axis of
+  // the right topology outranks one within the allowed radius error, which
+  // outranks a more exact one.
+  const auto rank = [&](const CheckedAxis& a) { return std::make_pair(a.problem.empty(), a.error <= allowed); };
+  for (int i = 0; i < kMaxRefinements && (best.violation > tolerance || best.error > allowed || !best.problem.empty());
+       ++i) {
+    fineness *= kRefinement;
+    CheckedAxis finer = checked_axis(face, fineness, index, boundary, tolerance);
+    if (rank(finer) > rank(best) || (rank(finer) == rank(best) && finer.violation < best.violation))
+      best = std::move(finer);
+  }
+  if (best.error > allowed) {
     std::ostringstream check;
-    check << "medial axis: a medial point's distance to the boundary or to a place it touches is " << error
+    check << "medial axis: a medial point's distance to the boundary or to a place it touches is " << best.error
           << " off its radius (allowed " << allowed << ")";
     throw SelfCheckError(face.name, check.str());
   }
   // Repairing moves edge points only: the topology is the one found above.
-  if (!best_problem.empty()) throw SelfCheckError(face.name, "medial axis: " + best_problem);
-  return best;
+  if (!best.problem.empty()) throw SelfCheckError(face.name, "medial axis: " + best.problem);
+  return std::move(best.axis);
 }
 
 FaceAxis compute_face_medial_axis(const FaceModel& face) {
