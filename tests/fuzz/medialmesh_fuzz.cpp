@@ -1,6 +1,7 @@
 // medialmesh_fuzz: random faces through every stage that exists.
 //
 //   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...] [--from I]
+//                   [--size F]
 //
 // Builds N random OCC faces of seven families (filleted polygons with holes,
 // plates with notches and slots, closed B-spline outlines, thin strips with
@@ -10,7 +11,8 @@
 // a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
 // a time limit: BREP text -> boundary model -> medial axis -> mesh flow ->
 // decomposition -> the face cut into block faces by OCC -> the block mesh
-// (mesh_face, order 1, elements 0.05 of the face's diagonal), with checks
+// (mesh_face, order 1, elements 0.05 of the face's diagonal, or F of it
+// with --size F), with checks
 // that do not trust the stages (OCC's area, the number of holes, the test
 // suite's medial axis checks, Poincare-Hopf, the test suite's decomposition
 // and mesh checks, OCC's validity and area of the block faces). Counts ok,
@@ -405,7 +407,8 @@ void enter(const std::string& stage) {
 }
 
 // Runs the stages on one face and checks them; the outcome and a message.
-std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::string& brep, const std::string& name) {
+std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::string& brep, const std::string& name,
+                                           double size_factor) {
   if (!BRepCheck_Analyzer(occ).IsValid()) return {kNotBuilt, "OCC finds the generated face invalid"};
   mm::FaceModel face;
   try {
@@ -467,11 +470,12 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
     } catch (const mm::InputError& e) {
       return {kBroken, std::string("OCC could not cut the face into its blocks: ") + e.what()};
     }
-    // The whole pipeline as a user runs it, at a size that keeps each face
-    // to a few hundred elements; its mesh checked by the test suite's checker.
+    // The whole pipeline as a user runs it, by default at a size that keeps
+    // each face to a few hundred elements; its mesh checked by the test
+    // suite's checker.
     enter("mesh");
     mm::PipelineOptions options;
-    options.meshing.size = 0.05 * face.size;
+    options.meshing.size = size_factor * face.size;
     options.meshing.order = 1;
     const mm::MeshedFace meshed = mm::mesh_face(face, options);
     const std::vector<std::string> wrong = mm::test::mesh_validity_problems(face, meshed.blocks.mesh);
@@ -493,6 +497,7 @@ struct Options {
   unsigned time_limit = 60;
   std::vector<std::string> families;  // all if empty
   int from = 0;
+  double size = 0.05;  // element size, a fraction of the face's diagonal
 };
 
 Options parse(int argc, char** argv) {
@@ -509,6 +514,9 @@ Options parse(int argc, char** argv) {
       o.out = v;
     } else if (a == "--from") {
       o.from = std::stoi(v);
+    } else if (a == "--size") {
+      o.size = std::stod(v);
+      if (!(o.size > 0.0 && o.size <= 1.0)) throw std::invalid_argument("--size must be in (0, 1]");
     } else if (a == "--time-limit") {
       o.time_limit = static_cast<unsigned>(std::stoul(v));
     } else if (a == "--families") {
@@ -534,7 +542,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "medialmesh_fuzz: " << e.what()
               << "\nusage: medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...] "
-                 "[--from I]\n";
+                 "[--from I] [--size F]\n";
     return 2;
   }
   Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
@@ -571,7 +579,7 @@ int main(int argc, char** argv) {
       if (result.second.empty()) {
         std::ofstream(path) << brep.str();
         try {
-          result = run_stages(g.face, brep.str(), path);
+          result = run_stages(g.face, brep.str(), path, o.size);
         } catch (const Standard_Failure& e) {
           result = {kInternal, std::string("OCC: ") + e.GetMessageString()};
         } catch (const std::exception& e) {
@@ -617,7 +625,7 @@ int main(int argc, char** argv) {
   for (const int c : counts) ran += c;
   std::cout << "seed " << o.seed << ", " << ran << " faces";
   if (ran != o.count) std::cout << " of the first " << o.count;
-  std::cout << "\n";
+  std::cout << ", elements " << o.size << " of the diagonal\n";
   for (int k = 0; k < kOutcomes; ++k) {
     std::cout << "  " << kOutcomeNames[k] << ": " << counts[k];
     for (const auto& [family, c] : by_family) {
