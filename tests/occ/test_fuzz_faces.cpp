@@ -277,6 +277,29 @@ TEST(FuzzFaces, ADiscMissingItsTouchingPlaceIsBuiltAgainFromFinerChords) {
   EXPECT_GT(m->quality.min_scaled_jacobian, 0.2);
 }
 
+// bspline_30_42 (fuzz seed 30): a smooth closed B-spline blob with three
+// lobes. On the default chords the lowest lobe's end is nearly round about
+// the branch's end, the searches from two chords there met at one place, the
+// edge joining the branch to its end was dropped, and the branch was pruned
+// as a stub: an axis of two ends whose every point passes the checks, and a
+// flow switch of k = -2 where the branch should join. The flow's fallback
+// builds the axis from finer chords: three curvature contacts round one
+// junction, and four k = -1.
+TEST(FuzzFaces, AFlowThatFailsOnAnAxisMissingABranchIsBuiltAgainFromFinerChords) {
+  const FaceModel face = test::data_face("fuzz/bspline_30_42");
+  const FaceFlow analysed = face_flow(face);
+  EXPECT_NE(analysed.note.find("chords 4 times finer"), std::string::npos) << analysed.note;
+  EXPECT_TRUE(test::medial_axis_is_valid(analysed.face, analysed.axis, 1e-6));
+  std::map<MedialVertexKind, int> kinds;
+  for (const MedialVertex& v : analysed.axis.vertices) ++kinds[v.kind];
+  EXPECT_EQ(kinds[MedialVertexKind::CurvatureContact], 3);
+  EXPECT_EQ(kinds[MedialVertexKind::Junction], 1);
+  EXPECT_EQ(analysed.flow.sum_k(), predicted_sum_k(face));
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_30_42");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.3);
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();

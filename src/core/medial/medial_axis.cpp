@@ -1458,15 +1458,14 @@ double medial_axis_violation(const FaceModel& face, const MedialAxis& axis) {
   return violation(nearest_points(NearestBoundary(index), axis), axis);
 }
 
-MedialAxis compute_medial_axis(const FaceModel& face) {
+MedialAxis compute_medial_axis(const FaceModel& face, double fineness) {
   const double tolerance = 1e-7 * face.size + face.tolerance;
   // The accuracy the axis promises (1e-6 of the diagonal, as the tests ask),
   // both ways: no boundary inside a disc, and every disc touching it.
   const double allowed = 1e-6 * face.size + face.tolerance;
   const BoundaryIndex index(face);
   const NearestBoundary boundary(index);  // built once for every check below
-  CheckedAxis best = checked_axis(face, 1.0, index, boundary, tolerance);
-  double fineness = 1.0;
+  CheckedAxis best = checked_axis(face, fineness, index, boundary, tolerance);
   // Finer chords where a point is off, a disc misses its touching places
   // (a junction the chords put beside a spurious ripple branch:
   // bspline_29_1052) or the axis has a cycle or a piece too many. An axis of

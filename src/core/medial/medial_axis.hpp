@@ -58,8 +58,11 @@ struct MedialAxis {
 // degenerate spot), builds it again from finer chords, at most twice, and
 // keeps the best. Throws SelfCheckError if the best still holds boundary by
 // more than 1e-6 of the face size plus its tolerance, or is not one connected
-// graph with a cycle round each hole.
-MedialAxis compute_medial_axis(const FaceModel& face);
+// graph with a cycle round each hole. `fineness` > 1 starts from chords that
+// many times finer (turning that many times less): for a later stage that
+// finds the axis incomplete (a branch lost where the chords misled the
+// diagram yet every point left passes the checks).
+MedialAxis compute_medial_axis(const FaceModel& face, double fineness = 1.0);
 
 // The stage's entry point: compute_medial_axis, and where its self-check
 // fails on a face with joins taken as smooth that are not tangent, the axis

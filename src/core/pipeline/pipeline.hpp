@@ -36,8 +36,9 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 // `medialmesh singularities` and the Python analyse() give them. The note
 // says when a fallback was needed: the axis built with the face's kinks
 // (joins up to 0.5 degrees off tangent) as corners, because the axis
-// (compute_face_medial_axis) or else the flow failed its self-check. Throws
-// SelfCheckError when that fails too.
+// (compute_face_medial_axis) or else the flow failed its self-check, or,
+// when the flow fails with the kinks too or there are none, the axis built
+// again from chords 4 times finer. Throws SelfCheckError when all fail.
 struct FaceFlow {
   FaceModel face;
   MedialAxis axis;
