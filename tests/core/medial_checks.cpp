@@ -2,17 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
 namespace mm::test {
 
-BoundaryProbe::BoundaryProbe(const FaceModel& face) : index_(face) {
+BoundaryProbe::BoundaryProbe(const FaceModel& face) : index_(face), chord_tolerance_(1e-4 * face.size) {
   for (std::size_t li = 0; li < face.loops.size(); ++li) {
     loops_.emplace_back();
     for (std::size_t ei = 0; ei < face.loops[li].edges.size(); ++ei) {
       const BoundaryEdge& e = face.loops[li].edges[ei];
-      for (double t : sample_edge_parameters(e, 1e-4 * face.size)) {
+      for (double t : sample_edge_parameters(e, chord_tolerance_)) {
         loops_.back().push_back({index_.place(static_cast<int>(li), static_cast<int>(ei), t), evaluate(e.curve, t).p});
       }
     }
@@ -49,12 +50,25 @@ BoundaryPlace BoundaryProbe::nearest(Vec2 p) const {
 
 bool BoundaryProbe::inside(Vec2 p) const {
   bool in = false;  // even-odd rule on the fine polylines
+  double to_chords = std::numeric_limits<double>::infinity();
   for (const auto& loop : loops_) {
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const Vec2 a = loop[i].second, b = loop[(i + 1) % loop.size()].second;
       if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+      const Vec2 d = b - a;
+      const double u = dot(d, d) > 0.0 ? std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0) : 0.0;
+      to_chords = std::min(to_chords, distance(p, a + u * d));
     }
   }
+  if (to_chords > 2 * chord_tolerance_) return in;
+  // Within the chords' sagitta of a curve they may put p on the wrong side
+  // (a fine mesh has element centres that near): away from an edge's ends
+  // the side of the exact nearest point decides, the material lying on the
+  // left of every loop.
+  const BoundaryPlace b = nearest(p);
+  const BoundaryEdge& e = index_.edge(b.loop, b.edge);
+  const double from_ends = std::min(std::abs(b.t - e.t_start), std::abs(b.t - e.t_end));
+  if (from_ends > 1e-9 * std::abs(e.t_end - e.t_start)) return cross(edge_tangent(e, b.t), p - b.point) > 0.0;
   return in;
 }
 

@@ -18,10 +18,13 @@ class BoundaryProbe {
   explicit BoundaryProbe(const FaceModel& face);
   double distance_to_boundary(Vec2 p) const { return distance(nearest(p).point, p); }
   BoundaryPlace nearest(Vec2 p) const;
+  // Exact within the polylines' chord tolerance of an edge's interior,
+  // where their chords could put p on the wrong side.
   bool inside(Vec2 p) const;
 
  private:
   BoundaryIndex index_;
+  double chord_tolerance_;
   std::vector<std::vector<std::pair<BoundaryPlace, Vec2>>> loops_;  // sample places and points
 };
 
