@@ -145,6 +145,24 @@ TEST(MeshReference, GlyphRingWithACuspGetsCornersRoundItsHole) {
   }
 }
 
+// The same glyph at a fifth of the default size: its first placement folds
+// over a region wider than untangling's default reach of 8 rings of elements
+// round the fold, with the settings asked for and with every fallback (an
+// inverted element, a self-check failure, until 2026-11-28). The pipeline's
+// last resort reaches 24 rings, and says so.
+TEST(MeshReference, AFoldInAFineMeshIsUntangledFromFurtherOut) {
+  const FaceModel face = test::data_face("glyph6_0603_smd");
+  PipelineOptions options;
+  options.meshing.size = 0.01 * face.size;
+  const MeshedFace m = mesh_face(face, options);
+  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+  EXPECT_EQ(m.quality.inverted, 0);
+  EXPECT_GT(m.quality.min_scaled_jacobian, 0.0);
+  EXPECT_GT(m.quality.quads, 1500);
+  ASSERT_FALSE(m.blocks.notes.empty());
+  EXPECT_NE(m.blocks.notes.back().find("untangling reaching further"), std::string::npos) << m.blocks.notes.back();
+}
+
 // Two pins of an SOT404 package (FreeCAD's IDF library) drawn as one face,
 // joined along their tops by a channel 1e-6 wide (7.7e-7 of the face's
 // size). The channel's two sides were taken as one place (within 1e-6 of

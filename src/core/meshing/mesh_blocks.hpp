@@ -17,6 +17,9 @@ struct MeshingOptions {
   double size = 0.0;  // target element size, face units (> 0)
   int order = 1;      // 1: 4-node quads, 2: 8-node quads
   bool smooth = true;
+  // Untangling reaches 24 rings of elements round a fold, not 8: the
+  // pipeline's last resort (a fold in a fine mesh spans more elements).
+  bool wide_untangling = false;
 };
 
 struct BlockMesh {

@@ -17,7 +17,6 @@ constexpr double kStillFraction = 2e-2;
 constexpr double kIntervalMargin = 1e-2;
 constexpr int kUntanglePasses = 200;
 constexpr int kUntangleStall = 3;  // passes without fewer inverted quads before reaching further
-constexpr int kUntangleRings = 8;
 constexpr int kRelaxSweeps = 50;
 // Quads at least this good are left alone: moving their nodes costs time
 // and cannot help the worst element.
@@ -621,11 +620,11 @@ class Smoother {
       if (inverted.size() < fewest) {
         fewest = inverted.size(), stalled = 0;
       } else if (++stalled >= kUntangleStall || !progress) {
-        if (rings < kUntangleRings) {
+        if (rings < options_.untangle_rings) {
           ++rings, stalled = 0;
         } else if (!relaxed) {
           relaxed = true;
-          region(inverted, 2 * kUntangleRings, nodes);
+          region(inverted, 2 * options_.untangle_rings, nodes);
           relax_region(nodes);
           inverted.clear();
           for (std::size_t q = 0; q < quad_sj_.size(); ++q)

@@ -16,6 +16,9 @@ struct SmoothingOptions {
   // than it did: the curves stay resolved as interval assignment resolved them.
   double max_boundary_turn = 0.0;
   std::vector<int> fixed;  // nodes that never move, besides the face corners
+  // How far untangling reaches round folded elements, in rings of elements,
+  // before it relaxes the region once (see untangle in smoothing.cpp).
+  int untangle_rings = 8;
 };
 
 struct SmoothingResult {
