@@ -312,6 +312,22 @@ TEST(FuzzFaces, ElementsHuggingACurveInAFineMeshAreInside) {
   EXPECT_GT(m->quality.quads, 1000);
 }
 
+// elliptic_28_944 (fuzz seed 28 at --size 0.01): a thin lens with an
+// 11.6-degree tip whose long body is one submapped block typed as a
+// rectangle, each long side opposite a short one: 14 elements at any size
+// from 0.03 of the diagonal down (a limit, not fixed). The mesh is valid but
+// far coarser than asked, and its notes say so.
+TEST(FuzzFaces, AMeshFarCoarserThanAskedSaysSo) {
+  const std::optional<MeshedFace> m = valid_mesh_of("elliptic_28_944", 0.01);
+  ASSERT_TRUE(m);
+  EXPECT_TRUE(std::any_of(m->blocks.notes.begin(), m->blocks.notes.end(), [](const std::string& note) {
+    return note.find("coarser than asked") != std::string::npos;
+  }));
+  const std::optional<MeshedFace> coarse = valid_mesh_of("bspline_29_1052");  // as asked: no such note
+  ASSERT_TRUE(coarse);
+  for (const std::string& note : coarse->blocks.notes) EXPECT_EQ(note.find("coarser"), std::string::npos) << note;
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();
