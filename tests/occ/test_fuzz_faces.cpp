@@ -107,6 +107,7 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <optional>
