@@ -55,10 +55,12 @@ struct MedialAxis {
 // Builds the axis from a Voronoi diagram of chords of the boundary; if a
 // medial disc of the result holds boundary (by more than 1e-7 of the face
 // size plus its tolerance: the chords misled the topology near a nearly
-// degenerate spot), builds it again from finer chords, at most twice, and
-// keeps the best. Throws SelfCheckError if the best still holds boundary by
-// more than 1e-6 of the face size plus its tolerance, or is not one connected
-// graph with a cycle round each hole. `fineness` > 1 starts from chords that
+// degenerate spot), misses a place it touches by more than 1e-6 of the face
+// size plus its tolerance, or the axis is not one connected graph with a
+// cycle round each hole, builds it again from finer chords, at most twice,
+// and keeps the best. Throws SelfCheckError if the best still holds boundary
+// or misses a touching place by more than 1e-6 of the face size plus its
+// tolerance, or is not one connected graph with a cycle round each hole. `fineness` > 1 starts from chords that
 // many times finer (turning that many times less): for a later stage that
 // finds the axis incomplete (a branch lost where the chords misled the
 // diagram yet every point left passes the checks).

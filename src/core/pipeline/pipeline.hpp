@@ -28,8 +28,10 @@ struct MeshedFace {
 // Throws InputError for bad options, SelfCheckError when a stage's result
 // fails its check with the options asked for and with each fallback tried
 // after them: submapped blocks' corners by the corner rule alone, less
-// merging (factor 0.5, 0.25, none), then splits at every concave corner (a
-// note in blocks.notes says when a fallback was used).
+// merging (factor 0.5, 0.25, none), splits at every concave corner, and last
+// the options asked for with untangling reaching further
+// (MeshingOptions::wide_untangling). A note in blocks.notes says when a
+// fallback was used.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // The face as the medial axis took it, its axis and its mesh flow, as
