@@ -114,6 +114,7 @@
 
 #include "decomposition_checks.hpp"
 #include "medial/medial_axis.hpp"
+#include "medial/nearest_boundary.hpp"
 #include "medial_checks.hpp"
 #include "mesh_checks.hpp"
 #include "occ/occ_face.hpp"
@@ -327,6 +328,27 @@ TEST(FuzzFaces, AMeshFarCoarserThanAskedSaysSo) {
   const std::optional<MeshedFace> coarse = valid_mesh_of("bspline_29_1052");  // as asked: no such note
   ASSERT_TRUE(coarse);
   for (const std::string& note : coarse->blocks.notes) EXPECT_EQ(note.find("coarser"), std::string::npos) << note;
+}
+
+// elliptic_33_274 (fuzz seed 33): a rectangle capped by a half ellipse, its
+// short sides meeting the ellipse tangentially. The self-check's nearest
+// boundary point skipped the chord from an edge's last sample to the next
+// edge's first, where a short side's foot lay 1.1e-3 nearer than the
+// ellipse's local minimum the search from the join settled on: an axis
+// point whose disc held boundary passed its own check (a broken invariant).
+// Both chords at a sample are now asked, along the loop.
+TEST(FuzzFaces, TheNearestBoundaryPointOnAnEdgesLastStretchIsFound) {
+  const FaceModel face = test::data_face("fuzz/elliptic_33_274");
+  const BoundaryIndex index(face);
+  const NearestBoundary boundary(index);
+  const Vec2 p{609.502725, 922.986008};
+  const BoundaryPlace nearest = boundary.nearest(p);
+  EXPECT_EQ(nearest.edge, 2);
+  EXPECT_NEAR(distance(nearest.point, p), 97.254505, 1e-6);
+  EXPECT_TRUE(axis_with_its_flow(face));
+  const std::optional<MeshedFace> m = valid_mesh_of("elliptic_33_274");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.8);
 }
 
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
