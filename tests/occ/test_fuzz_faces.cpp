@@ -351,6 +351,27 @@ TEST(FuzzFaces, TheNearestBoundaryPointOnAnEdgesLastStretchIsFound) {
   EXPECT_GT(m->quality.min_scaled_jacobian, 0.8);
 }
 
+// filleted_33_390 (fuzz seed 33): a filleted polygon with two holes, one of
+// its fillets 7.6e-7 long between two lines. Along a block's outline the
+// touches stepped back over that fillet (a whole edge in loop positions)
+// and the touched arc then counted as no length, its ends a sliver apart:
+// the run came out a whole edge short, the block's boundary stopped before
+// the fillet while its split ended 0.061 beyond it, and the decomposition
+// failed its check with every fallback. Ends a sliver apart now step the
+// short way round.
+TEST(FuzzFaces, ARangeOverAFilletShorterThanASliverKeepsItsLength) {
+  const FaceModel face = test::data_face("fuzz/filleted_33_390");
+  const std::optional<MedialAxis> axis = axis_with_its_flow(face);
+  ASSERT_TRUE(axis);
+  const MeshFlow flow = compute_mesh_flow(face, *axis);
+  const Decomposition d = decompose(face, *axis, flow, {});
+  EXPECT_TRUE(test::decomposition_problems(face, flow, d).empty());
+  EXPECT_FALSE(d.fallback);
+  const std::optional<MeshedFace> m = valid_mesh_of("filleted_33_390");
+  ASSERT_TRUE(m);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.2);
+}
+
 TEST(FuzzFaces, AreaIntegralOfAClosedCurveFromItsEnd) {
   const FaceModel face = test::data_face("fuzz/aerofoil_1_68");
   const auto start = std::chrono::steady_clock::now();
