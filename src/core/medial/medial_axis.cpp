@@ -19,10 +19,9 @@ namespace {
 // give the geometry), and Boost.Polygon's time grows with the number of
 // chords: chords within this fraction of the face size of the curves,
 // turning by at most kMaxChordTurn. Where the result fails its own check,
-// the axis is built again with chords finer by kRefinement, at most twice.
+// the axis is built again with chords finer by kChordRefinement, at most twice.
 constexpr double kChordTolerance = 1e-3;
 constexpr double kMaxChordTurn = 30.0 * kPi / 180.0;
-constexpr double kRefinement = 4.0;
 constexpr int kMaxRefinements = 2;
 // Two touching points closer than this (relative to the face size) are one:
 // an edge whose two exact touching points coincide is an artefact of the
@@ -1474,7 +1473,7 @@ MedialAxis compute_medial_axis(const FaceModel& face, double fineness) {
   const auto rank = [&](const CheckedAxis& a) { return std::make_pair(a.problem.empty(), a.error <= allowed); };
   for (int i = 0; i < kMaxRefinements && (best.violation > tolerance || best.error > allowed || !best.problem.empty());
        ++i) {
-    fineness *= kRefinement;
+    fineness *= kChordRefinement;
     CheckedAxis finer = checked_axis(face, fineness, index, boundary, tolerance);
     if (rank(finer) > rank(best) || (rank(finer) == rank(best) && finer.violation < best.violation))
       best = std::move(finer);

@@ -52,18 +52,22 @@ struct MedialAxis {
   std::vector<MedialEdge> edges;
 };
 
+// How many times finer the chords of each rebuild of the axis are.
+inline constexpr double kChordRefinement = 4.0;
+
 // Builds the axis from a Voronoi diagram of chords of the boundary; if a
 // medial disc of the result holds boundary (by more than 1e-7 of the face
 // size plus its tolerance: the chords misled the topology near a nearly
 // degenerate spot), misses a place it touches by more than 1e-6 of the face
 // size plus its tolerance, or the axis is not one connected graph with a
-// cycle round each hole, builds it again from finer chords, at most twice,
-// and keeps the best. Throws SelfCheckError if the best still holds boundary
-// or misses a touching place by more than 1e-6 of the face size plus its
-// tolerance, or is not one connected graph with a cycle round each hole. `fineness` > 1 starts from chords that
-// many times finer (turning that many times less): for a later stage that
-// finds the axis incomplete (a branch lost where the chords misled the
-// diagram yet every point left passes the checks).
+// cycle round each hole, builds it again from chords kChordRefinement times
+// finer, at most twice, and keeps the best. Throws SelfCheckError if the
+// best still holds boundary or misses a touching place by more than 1e-6 of
+// the face size plus its tolerance, or is not one connected graph with a
+// cycle round each hole. `fineness` > 1 starts from chords that many times
+// finer (turning that many times less): for a later stage that finds the
+// axis incomplete (a branch lost where the chords misled the diagram yet
+// every point left passes the checks).
 MedialAxis compute_medial_axis(const FaceModel& face, double fineness = 1.0);
 
 // The stage's entry point: compute_medial_axis, and where its self-check

@@ -18,10 +18,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using StageSeconds = std::vector<std::pair<std::string, double>>;
 
-// How many times finer the chords of the medial axis built again are when
-// the mesh flow fails on the first one (the axis's own refinement step).
-constexpr double kFinerChords = 4.0;
-
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -220,12 +216,12 @@ FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
     // flow does not balance where the branch should join; finer chords
     // resolve it.
     try {
-      MedialAxis axis = compute_medial_axis(medial.face, kFinerChords);
+      MedialAxis axis = compute_medial_axis(medial.face, kChordRefinement);
       MeshFlow flow = compute_mesh_flow(medial.face, axis);
       std::ostringstream note;
       if (!medial.note.empty()) note << medial.note << "; ";
       note << "the mesh flow failed its self-check (" << first.what()
-           << ") on the medial axis from the default chords; built again from chords " << kFinerChords
+           << ") on the medial axis from the default chords; built again from chords " << kChordRefinement
            << " times finer";
       return {std::move(medial.face), std::move(axis), std::move(flow), note.str()};
     } catch (const SelfCheckError&) {
