@@ -431,7 +431,8 @@ std::pair<Outcome, std::string> run_stages(const TopoDS_Face& occ, const std::st
   }
   try {
     // Axis and flow through the pipeline's entry points, with the fallbacks
-    // a user's face gets (kinks as corners where the axis or flow fails).
+    // a user's face gets (kinks as corners where the axis or flow fails,
+    // finer chords where the flow still fails).
     enter("medial axis");
     mm::FaceAxis medial = mm::compute_face_medial_axis(face);
     const ::testing::AssertionResult valid = mm::test::medial_axis_is_valid(medial.face, medial.axis, 1e-6);
