@@ -39,6 +39,24 @@ std::optional<Vec2> point_just_inside(const std::vector<Vec2>& polygon, double r
   return std::nullopt;
 }
 
+// A point the closed outline passes twice, at least a thousandth of the
+// size apart along it both ways: a disc only through that point (a block
+// round a hole whose splits all end at one point), where a polygon
+// template's lines from its centre would cross the hole.
+std::optional<Vec2> outline_pinch(const std::vector<Vec2>& outline, double size) {
+  const std::size_t n = outline.size();
+  std::vector<double> along(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) along[i + 1] = along[i] + distance(outline[i], outline[(i + 1) % n]);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double between = along[j] - along[i];
+      if (between > 1e-3 * size && along[n] - between > 1e-3 * size && distance(outline[i], outline[j]) <= 1e-6 * size)
+        return outline[i];
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Decomposition decompose_face(const FaceModel& face, double merge_factor) {
@@ -109,6 +127,9 @@ std::vector<std::string> decomposition_problems(const FaceModel& face, const Mes
         if (c.type != 1) problem(name + " is a polygon with a corner of type " + std::to_string(c.type));
       }
       if (block.singularity < 0 && block.corners.size() != 4) problem(name + " is a polygon with no singularity");
+      if (const std::optional<Vec2> pinch = outline_pinch(block.outline, face.size))
+        problem(name + " is a polygon whose outline comes back to (" + std::to_string(pinch->x) + ", " +
+                std::to_string(pinch->y) + ")");
     } else if (block.singularity >= 0) {
       problem(name + " is a submap block holding a singularity");
     } else {

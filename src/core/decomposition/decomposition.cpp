@@ -1965,8 +1965,9 @@ class Decomposer {
         for (int u : list) k += units_[u].k;
         const Outline& o = outlines[outlines_of[comp].front()];
         const std::vector<int> types = corner_types(o);
-        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) && k <= 2 &&
-             k >= -4 && (list.size() == 1 || std::any_of(list.begin(), list.end(), [&](int u) { return !fixable(u); }));
+        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) &&
+             !pinched(o) && k <= 2 && k >= -4 &&
+             (list.size() == 1 || std::any_of(list.begin(), list.end(), [&](int u) { return !fixable(u); }));
       }
       if (!ok) broken_units.insert(list.begin(), list.end());
       // A singularity that cannot be fixed keeps its block: withdraw the
@@ -2018,6 +2019,30 @@ class Decomposer {
       if (it.split_b != it.split_a && !seen.insert(it.split_b).second) return false;
     }
     return true;
+  }
+
+  // A block outline that comes back to a point it left: round a hole whose
+  // splits all end at one point (a blade's trailing edge, say). The block is
+  // a disc only through that point, and a template's lines from its centre
+  // to its sides' midpoints would cross the hole.
+  bool pinched(const Outline& o) const {
+    const BlockRing flat = flatten(o);
+    std::vector<double> along;  // outline length to each piece's start
+    double length = 0.0;
+    for (const OutlinePiece& piece : flat.pieces) {
+      along.push_back(length);
+      for (std::size_t k = 1; k < piece.points.size(); ++k) length += distance(piece.points[k - 1], piece.points[k]);
+    }
+    const double apart = 1e-3 * face_.size;  // along the outline both ways, so no mere zero-length piece
+    for (std::size_t i = 0; i < flat.pieces.size(); ++i) {
+      for (std::size_t j = i + 1; j < flat.pieces.size(); ++j) {
+        const double between = along[j] - along[i];
+        if (between > apart && length - between > apart &&
+            distance(flat.pieces[i].points.front(), flat.pieces[j].points.front()) <= sliver_length())
+          return true;
+      }
+    }
+    return false;
   }
 
   // Section 4.6: cut the cycles of the axis where the flow is straightest,
