@@ -1,7 +1,7 @@
 // The two mesh tables of the README, printed as markdown.
 //
 // --compare: every face of SHARED/geometry/*.brep and SHARED/realcad/faces/*.brep
-// meshed at H = 0.05 x the face's diagonal by our pipeline (mesh_face, order 1,
+// meshed at H = 0.05 x the face's diagonal (--size-factor) by our pipeline (mesh_face, order 1,
 // default options) and by Gmsh on the same BREP file in two quad
 // configurations. Gmsh's quads are brought into the face's own coordinates and
 // judged by the same measure_quality as ours.
@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -462,9 +463,11 @@ void keep_faster(Measured& best, const Measured& again) {
   best.block_seconds = again.block_seconds;
 }
 
-void run_comparison(const fs::path& shared, const std::string& svg_dir, int repeats, unsigned timeout) {
+void run_comparison(const fs::path& shared, double size_factor, const std::string& svg_dir, int repeats,
+                    unsigned timeout) {
   const std::vector<std::pair<fs::path, bool>> files = compared_faces(shared);
-  std::cout << "## Ours against Gmsh " << gmsh_version(timeout) << " at H = 0.05 x the face's diagonal\n\n"
+  std::cout << "## Ours against Gmsh " << gmsh_version(timeout) << " at H = " << size_factor
+            << " x the face's diagonal\n\n"
             << "Ours: mesh_face, order 1, default options; time = the whole call (medial axis to quality), the "
                "least of "
             << repeats
@@ -490,7 +493,7 @@ void run_comparison(const fs::path& shared, const std::string& svg_dir, int repe
     const std::string svg_base = svg_dir.empty() ? "" : (fs::path(svg_dir) / row.name).string();
     try {
       const mm::FaceModel face = mm::read_face_models(path.string(), {}).front();
-      const double size = 0.05 * face.size;
+      const double size = size_factor * face.size;
       row.ours = mesh_ours(face, size, svg_base.empty() ? "" : svg_base + "_ours.svg", timeout);
       for (int r = 1; r < repeats; ++r) keep_faster(row.ours, mesh_ours(face, size, "", timeout));
       for (const GmshConfig& c : kGmshConfigs) {
@@ -643,14 +646,14 @@ StageTimes stage_times(const mm::FaceModel& face, double size, int repeats, unsi
   return times;
 }
 
-void run_stages(const fs::path& shared, int repeats, unsigned timeout) {
+void run_stages(const fs::path& shared, double size_factor, int repeats, unsigned timeout) {
   std::vector<std::pair<std::string, StageTimes>> rows;
   std::vector<std::string> names{"total"};
   for (const auto& [path, reference] : compared_faces(shared)) {
     StageTimes t;
     try {
       const mm::FaceModel face = mm::read_face_models(path.string(), {}).front();
-      t = stage_times(face, 0.05 * face.size, repeats, timeout);
+      t = stage_times(face, size_factor * face.size, repeats, timeout);
     } catch (const std::exception& e) {
       t.failure = std::string("error: ") + e.what();
     }
@@ -658,7 +661,7 @@ void run_stages(const fs::path& shared, int repeats, unsigned timeout) {
       if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
     rows.emplace_back(path.stem().string(), t);
   }
-  std::cout << "## Stage times at H = 0.05 x the face's diagonal (ms, least of " << repeats
+  std::cout << "## Stage times at H = " << size_factor << " x the face's diagonal (ms, least of " << repeats
             << " runs; cold = first call in a fresh process, warm = the second)\n\n| face | quads";
   for (const std::string& n : names) std::cout << " | " << n;
   std::cout << " | warm total";
@@ -697,14 +700,15 @@ void run_stages(const fs::path& shared, int repeats, unsigned timeout) {
 
 const char* const kUsage =
     "usage: mesh_benchmark [--compare] [--scaling] [--stages] [--shared DIR] [--scaling-face NAME] [--svg-dir DIR]\n"
-    "                      [--repeat N] [--timeout S]\n"
+    "                      [--repeat N] [--timeout S] [--size-factor F]\n"
     "Prints the comparison with Gmsh and the scaling table as markdown (both unless one is named).\n"
     "--compare: each face's time, ours and Gmsh's, the least of N runs (--repeat, 3).\n"
     "--stages: our time per stage on every compared face, cold and warm, the least of N runs (--repeat, 3).\n"
     "--shared: the folder holding geometry/ and realcad/faces/ (default " MM_SHARED_DIR
     ").\n"
     "--scaling-face: a face of geometry/ (default plate_with_hole). --svg-dir: draw every compared mesh there.\n"
-    "--timeout: seconds a single meshing may take before it counts as a timeout (default 600).\n";
+    "--timeout: seconds a single meshing may take before it counts as a timeout (default 600).\n"
+    "--size-factor: H for --compare and --stages as a fraction of each face's diagonal (default 0.05).\n";
 
 }  // namespace
 
@@ -714,6 +718,7 @@ int main(int argc, char** argv) {
   fs::path shared = MM_SHARED_DIR;
   std::string scaling_face = "plate_with_hole", svg_dir;
   unsigned timeout = 600;
+  double size_factor = 0.05;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
@@ -731,6 +736,13 @@ int main(int argc, char** argv) {
       scaling_face = argv[++i];
     } else if (a == "--svg-dir" && has_value) {
       svg_dir = argv[++i];
+    } else if (a == "--size-factor" && has_value) {
+      char* end = nullptr;
+      size_factor = std::strtod(argv[++i], &end);
+      if (*end != '\0' || !(size_factor > 0.0)) {
+        std::cerr << "mesh_benchmark: --size-factor must be a positive number\n";
+        return 2;
+      }
     } else if (a == "--timeout" && has_value) {
       timeout = static_cast<unsigned>(std::stoul(argv[++i]));
     } else {
@@ -741,9 +753,9 @@ int main(int argc, char** argv) {
   if (!compare && !scaling && !stages) compare = scaling = true;
   try {
     if (!svg_dir.empty()) fs::create_directories(svg_dir);
-    if (compare) run_comparison(shared, svg_dir, repeats, timeout);
+    if (compare) run_comparison(shared, size_factor, svg_dir, repeats, timeout);
     if (scaling) run_scaling(shared, scaling_face, timeout);
-    if (stages) run_stages(shared, repeats, timeout);
+    if (stages) run_stages(shared, size_factor, repeats, timeout);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
     return 1;
