@@ -401,8 +401,11 @@ double fill_disc_layout(Filler& f, const Chain& loop, int start, double depth_fr
   return *std::min_element(sizes, sizes + 3) / *std::max_element(sizes, sizes + 3);
 }
 
-// Loops longer than this choose their disc layout on a coarse copy.
-constexpr int kDiscTrialNodes = 192;
+// Loops longer than this choose their disc layout on a coarse copy. On the
+// circle and three B-spline blobs from 0.03 to 0.005 of the diagonal, 64
+// chose layouts as good as 192 did (the same minimum, means within 5e-4)
+// in a fifth of the time: every trial fills the whole coarse disc.
+constexpr int kDiscTrialNodes = 64;
 
 void fill_disc(Filler& f, const Chain& loop, const std::vector<int>& p) {
   const int n = static_cast<int>(loop.size());
