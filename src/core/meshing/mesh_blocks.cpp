@@ -289,7 +289,10 @@ class BlockMesher {
                                 {{"intervals", seconds(t0, t1)}, {"placement", seconds(t1, t2)}});
     result.notes.insert(result.notes.begin(), relaxed.begin(), relaxed.end());
     result.notes.insert(result.notes.end(), intervals.notes.begin(), intervals.notes.end());
-    if (const std::string coarse = coarser_than_asked(result.mesh); !coarse.empty()) result.notes.push_back(coarse);
+    if (const std::string coarse = coarser_than_asked(result.mesh); !coarse.empty()) {
+      result.notes.push_back(coarse);
+      result.coarser_than_asked = true;
+    }
     return result;
   }
 

@@ -26,6 +26,7 @@ struct BlockMesh {
   QuadMesh mesh;
   std::vector<int> segment_counts;  // intervals per segment, for the report
   std::vector<std::string> notes;
+  bool coarser_than_asked = false;  // under 0.4 of area / H^2 elements (a note says so)
   std::vector<std::pair<std::string, double>> stage_seconds;
 };
 
