@@ -30,8 +30,10 @@ struct MeshedFace {
 // after them: submapped blocks' corners by the corner rule alone, less
 // merging (factor 0.5, 0.25, none), splits at every concave corner, and last
 // the options asked for with untangling reaching further
-// (MeshingOptions::wide_untangling). A note in blocks.notes says when a
-// fallback was used.
+// (MeshingOptions::wide_untangling). A mesh far coarser than asked
+// (BlockMesh::coarser_than_asked) is made again with the singularities merged
+// within a twentieth of the face's diagonal, as at the default size, and
+// kept if it no longer is. A note in blocks.notes says when a fallback was used.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // The face as the medial axis took it, its axis and its mesh flow, as
@@ -71,8 +73,10 @@ struct MeshedFaces {
   QualityReport quality;            // of the merged mesh (combine_quality), with the stages' seconds
 };
 
-// Throws as mesh_face; SelfCheckError naming the faces when the merged mesh
-// fails its checks (merge_face_meshes), InputError for no faces.
+// Throws as mesh_face, and falls back as it does (the coarse retry merging
+// within a twentieth of the smallest face's diagonal); SelfCheckError naming
+// the faces when the merged mesh fails its checks (merge_face_meshes),
+// InputError for no faces.
 MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOptions& options);
 
 }  // namespace mm
