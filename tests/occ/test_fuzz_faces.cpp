@@ -339,6 +339,11 @@ TEST(FuzzFaces, AMeshFarCoarserThanAskedIsMadeAgainWithTheDefaultSizesMerging) {
   EXPECT_TRUE(std::any_of(m->blocks.notes.begin(), m->blocks.notes.end(), [](const std::string& note) {
     return note.find("far coarser than asked; meshed with merging within") != std::string::npos;
   }));
+  PipelineOptions options;  // several faces meshed together retry the same way
+  options.meshing.size = size;
+  const MeshedFaces together = mesh_faces({face}, options);
+  EXPECT_FALSE(together.faces.front().blocks.coarser_than_asked);
+  EXPECT_EQ(together.faces.front().quality.quads, m->quality.quads);
   const std::optional<MeshedFace> as_asked = valid_mesh_of("bspline_29_1052");  // no such note
   ASSERT_TRUE(as_asked);
   for (const std::string& note : as_asked->blocks.notes) EXPECT_EQ(note.find("coarser"), std::string::npos) << note;

@@ -289,11 +289,15 @@ class BlockMesher {
                                 {{"intervals", seconds(t0, t1)}, {"placement", seconds(t1, t2)}});
     result.notes.insert(result.notes.begin(), relaxed.begin(), relaxed.end());
     result.notes.insert(result.notes.end(), intervals.notes.begin(), intervals.notes.end());
+    flag_if_coarse(result);
+    return result;
+  }
+
+  void flag_if_coarse(BlockMesh& result) const {
     if (const std::string coarse = coarser_than_asked(result.mesh); !coarse.empty()) {
       result.notes.push_back(coarse);
       result.coarser_than_asked = true;
     }
-    return result;
   }
 
   // A note when the mesh has far fewer elements than the face's area over
@@ -1509,6 +1513,7 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
                                                            {"placement", f == 0 ? seconds(t1, t2) : 0.0}});
     mesh.notes.insert(mesh.notes.begin(), relaxed[f].begin(), relaxed[f].end());
     if (f == 0) mesh.notes.insert(mesh.notes.end(), intervals.notes.begin(), intervals.notes.end());
+    meshers[f]->flag_if_coarse(mesh);
     result.faces.push_back(std::move(mesh));
   }
   // Only interior nodes are ever removed: the shared boundary nodes stay, renumbered.

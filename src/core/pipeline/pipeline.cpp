@@ -210,6 +210,38 @@ std::string coarse_retry_note(const PipelineOptions& options, const PipelineOpti
          settings_text(retry) + " (as at the default size, a twentieth of the diagonal)";
 }
 
+double total_seconds(const StageSeconds& stages) {
+  double total = 0.0;
+  for (const auto& stage : stages) total += stage.second;
+  return total;
+}
+
+// The coarse retry: when `meshed` is far coarser than asked, `make` meshes
+// again with coarse_retry_options, and that result replaces it (its
+// decomposition time in `passed`, the note) if it no longer is. The time of
+// whichever attempt is dropped goes to failed_attempts.
+template <typename Meshed, typename Make, typename IsCoarse, typename BlockSeconds>
+void remesh_if_coarse(const PipelineOptions& options, const std::vector<const FaceFlow*>& flows, Meshed& meshed,
+                      StageSeconds& passed, std::string& note, StageSeconds& stages, Make make, IsCoarse coarse,
+                      BlockSeconds block_seconds) {
+  const std::optional<PipelineOptions> retry = coarse(meshed) ? coarse_retry_options(options, flows) : std::nullopt;
+  if (!retry) return;
+  const auto t = Clock::now();
+  try {
+    StageSeconds attempt;
+    Meshed again = make(*retry, attempt);
+    if (!coarse(again)) {
+      add_stage(stages, "failed_attempts", total_seconds(passed) + block_seconds(meshed));
+      meshed = std::move(again);
+      passed = attempt;
+      note = coarse_retry_note(options, *retry);
+      return;
+    }
+  } catch (const SelfCheckError&) {
+  }
+  add_stage(stages, "failed_attempts", seconds_since(t));
+}
+
 }  // namespace
 
 FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
@@ -271,33 +303,24 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   MeshedFace result;
   StageSeconds stages;
   const FaceFlow flow = flow_of_face(face, stages);
+  using Meshed = std::pair<Decomposition, BlockMesh>;
+  const auto make = [&](const PipelineOptions& o, StageSeconds& attempt) {
+    Decomposition decomposition = decompose_flow(flow, o, attempt);
+    BlockMesh blocks = mesh_blocks(flow.face, decomposition, o.meshing);
+    return Meshed{std::move(decomposition), std::move(blocks)};
+  };
+  Meshed meshed;
   StageSeconds passed;  // the stages of the attempt that passed
   std::string note = with_fallbacks(options, {&flow}, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
-    result.decomposition = decompose_flow(flow, o, attempt);
-    result.blocks = mesh_blocks(flow.face, result.decomposition, o.meshing);
+    meshed = make(o, attempt);
     passed = attempt;
   });
-  if (const auto retry = result.blocks.coarser_than_asked ? coarse_retry_options(options, {&flow}) : std::nullopt) {
-    const auto t = Clock::now();
-    try {
-      StageSeconds attempt;
-      Decomposition decomposition = decompose_flow(flow, *retry, attempt);
-      BlockMesh blocks = mesh_blocks(flow.face, decomposition, retry->meshing);
-      if (!blocks.coarser_than_asked) {
-        for (const auto& stage : passed) add_stage(stages, "failed_attempts", stage.second);
-        for (const auto& stage : result.blocks.stage_seconds) add_stage(stages, "failed_attempts", stage.second);
-        result.decomposition = std::move(decomposition);
-        result.blocks = std::move(blocks);
-        passed = attempt;
-        note = coarse_retry_note(options, *retry);
-      } else {
-        add_stage(stages, "failed_attempts", seconds_since(t));
-      }
-    } catch (const SelfCheckError&) {
-      add_stage(stages, "failed_attempts", seconds_since(t));
-    }
-  }
+  remesh_if_coarse(
+      options, {&flow}, meshed, passed, note, stages, make, [](const Meshed& m) { return m.second.coarser_than_asked; },
+      [](const Meshed& m) { return total_seconds(m.second.stage_seconds); });
+  result.decomposition = std::move(meshed.first);
+  result.blocks = std::move(meshed.second);
   if (!flow.note.empty()) result.blocks.notes.push_back(flow.note);
   if (!note.empty()) result.blocks.notes.push_back(note);
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
@@ -321,41 +344,33 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   for (const FaceFlow& f : flows) taken.push_back(f.face);
   std::vector<const FaceFlow*> flow_list;
   for (const FaceFlow& f : flows) flow_list.push_back(&f);
-  std::vector<Decomposition> decompositions;
-  FaceSetBlockMesh blocks;
+  using Meshed = std::pair<std::vector<Decomposition>, FaceSetBlockMesh>;
+  const auto make = [&](const PipelineOptions& o, StageSeconds& attempt) {
+    Meshed m;
+    for (std::size_t f = 0; f < faces.size(); ++f) m.first.push_back(decompose_flow(flows[f], o, attempt));
+    m.second = mesh_blocks_together(taken, m.first, o.meshing);
+    return m;
+  };
+  Meshed meshed;
   StageSeconds passed;  // the decomposition time of the attempt that passed
   std::string note = with_fallbacks(options, flow_list, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
-    decompositions.clear();
-    for (std::size_t f = 0; f < faces.size(); ++f) decompositions.push_back(decompose_flow(flows[f], o, attempt));
-    blocks = mesh_blocks_together(taken, decompositions, o.meshing);
+    meshed = make(o, attempt);
     passed = attempt;
   });
-  const auto coarse = [](const FaceSetBlockMesh& b) {
-    return std::any_of(b.faces.begin(), b.faces.end(), [](const BlockMesh& f) { return f.coarser_than_asked; });
-  };
-  if (const auto retry = coarse(blocks) ? coarse_retry_options(options, flow_list) : std::nullopt) {
-    const auto t = Clock::now();
-    try {
-      StageSeconds attempt;
-      std::vector<Decomposition> again;
-      for (std::size_t f = 0; f < faces.size(); ++f) again.push_back(decompose_flow(flows[f], *retry, attempt));
-      FaceSetBlockMesh meshed = mesh_blocks_together(taken, again, retry->meshing);
-      if (!coarse(meshed)) {
-        for (const auto& stage : passed) add_stage(stages, "failed_attempts", stage.second);
-        for (const BlockMesh& face : blocks.faces)
-          for (const auto& stage : face.stage_seconds) add_stage(stages, "failed_attempts", stage.second);
-        decompositions = std::move(again);
-        blocks = std::move(meshed);
-        passed = attempt;
-        note = coarse_retry_note(options, *retry);
-      } else {
-        add_stage(stages, "failed_attempts", seconds_since(t));
-      }
-    } catch (const SelfCheckError&) {
-      add_stage(stages, "failed_attempts", seconds_since(t));
-    }
-  }
+  remesh_if_coarse(
+      options, flow_list, meshed, passed, note, stages, make,
+      [](const Meshed& m) {
+        return std::any_of(m.second.faces.begin(), m.second.faces.end(),
+                           [](const BlockMesh& f) { return f.coarser_than_asked; });
+      },
+      [](const Meshed& m) {
+        double seconds = 0.0;
+        for (const BlockMesh& f : m.second.faces) seconds += total_seconds(f.stage_seconds);
+        return seconds;
+      });
+  std::vector<Decomposition>& decompositions = meshed.first;
+  FaceSetBlockMesh& blocks = meshed.second;
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   for (std::size_t f = 0; f < faces.size(); ++f)
     if (!flows[f].note.empty()) blocks.faces[f].notes.push_back(flows[f].note);
