@@ -2,6 +2,7 @@
 // convex polygons around floating singularities, corner types closing up.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iostream>
 #include <random>
 
@@ -112,6 +113,31 @@ TEST(Decomposition, SlotWithRoundEndsIsTwoTwoSidedBlocks) {
   EXPECT_TRUE(test::decomposition_problems(f, r.flow, r.d).empty());
   EXPECT_EQ(r.d.splits.size(), 1u);
   EXPECT_EQ(polygons_with_sides(r.d, 2), 2);
+}
+
+// A rounded rectangle: each fillet's k = -1 sits at its centre, a finite
+// contact no cut can fix. The two of a short side shared one convex block
+// and were merged into a k = -2 (a 2-sided block: 0.40 at a hundredth of the
+// diagonal). The axis's junction between them now parts them: a 3-sided
+// block round each fillet, two mapped ones between, and a mesh whose worst
+// element stays as good however fine.
+TEST(Decomposition, RoundedRectangleGetsATriangleRoundEachFillet) {
+  const double s = 1.0 - std::sqrt(0.5);  // a quarter circle's sagitta, radius 1
+  const FaceModel f = face({{test::line({1, 0}, {9, 0}), test::arc({9, 0}, {10, 1}, s), test::line({10, 1}, {10, 5}),
+                             test::arc({10, 5}, {9, 6}, s), test::line({9, 6}, {1, 6}), test::arc({1, 6}, {0, 5}, s),
+                             test::line({0, 5}, {0, 1}), test::arc({0, 1}, {1, 0}, s)}});
+  const Result r = run(f);
+  EXPECT_TRUE(test::decomposition_problems(f, r.flow, r.d).empty());
+  EXPECT_EQ(polygons_with_sides(r.d, 3), 4);
+  for (const DecomposedSingularity& g : r.d.singularities) EXPECT_EQ(g.k, -1);
+  for (const double share : {0.05, 0.01}) {
+    PipelineOptions options;
+    options.meshing.size = share * f.size;
+    const MeshedFace m = mesh_face(f, options);
+    EXPECT_TRUE(test::mesh_validity_problems(f, m.blocks.mesh).empty());
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.8) << share;
+    EXPECT_EQ(m.quality.irregular_interior.size(), 4u) << share;
+  }
 }
 
 TEST(Decomposition, AnnulusIsCutOnceIntoOneSubmapBlock) {

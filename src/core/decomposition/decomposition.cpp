@@ -1969,6 +1969,9 @@ class Decomposer {
              !pinched(o) && k <= 2 && k >= -4 &&
              (list.size() == 1 || std::any_of(list.begin(), list.end(), [&](int u) { return !fixable(u); }));
       }
+      if (ok && list.size() > 1 && std::none_of(list.begin(), list.end(), [&](int u) { return fixable(u); }) &&
+          part_at_junction(comp, list))
+        return true;
       if (!ok) broken_units.insert(list.begin(), list.end());
       // A singularity that cannot be fixed keeps its block: withdraw the
       // splits that make its reflex corners, so their own singularities get
@@ -1987,6 +1990,69 @@ class Decomposer {
       changed = true;
     }
     return changed;
+  }
+
+  // Singularities that cannot be fixed (fillets' finite contacts) sharing
+  // one convex block are one merged node; where a junction of the block's
+  // axis lies between them, its radii part them instead, each into a convex
+  // polygon of its own. A rounded rectangle's short side: its two fillets'
+  // k = -1 merged into a k = -2 whose 2-sided block grows lopsided as the
+  // elements shrink (0.40 at a hundredth of the diagonal); parted, a 3-sided
+  // block round each fillet and a mapped middle. Kept only if so.
+  bool part_at_junction(int comp, const std::vector<int>& list) {
+    for (std::size_t v = 0; v < axis_.vertices.size(); ++v) {
+      if (rep_[v] != static_cast<int>(v) || vertex_cut(static_cast<int>(v)) ||
+          axis_.vertices[v].kind != MedialVertexKind::Junction || ends_[v].size() < 3 ||
+          pieces().find(static_cast<int>(v)) != comp)
+        continue;
+      Cut c;
+      c.vertex = static_cast<int>(v);
+      c.reason = SplitReason::Resolve;
+      cuts_.push_back(c);
+      vertex_cuts_.insert(c.vertex);
+      ++version_;
+      if (parted_into_polygons(list)) {
+        notes_.push_back("parted " + std::to_string(list.size()) +
+                         " singularities that cannot be fixed at a junction between them");
+        return true;
+      }
+      cuts_.pop_back();
+      vertex_cuts_.erase(c.vertex);
+      ++version_;
+      make_splits();  // the splits of the outlines being checked, again
+    }
+    return false;
+  }
+
+  // Whether each unit now lies alone in a convex polygon block.
+  bool parted_into_polygons(const std::vector<int>& list) {
+    std::vector<Outline> outlines;
+    try {
+      outlines = walk_outlines();
+    } catch (const SelfCheckFailure&) {
+      return false;
+    }
+    Pieces p = pieces();
+    std::map<int, int> unit_of;  // component -> the one unit in it
+    for (int u : list) {
+      std::set<int> comps;
+      for (int m : units_[u].members) comps.insert(component_of(p, m));
+      if (comps.size() != 1 || comps.count(-1) || !unit_of.emplace(*comps.begin(), u).second) return false;
+    }
+    for (const auto& [comp, u] : unit_of) {
+      const Outline* only = nullptr;
+      for (const Outline& o : outlines) {
+        if (o.component != comp) continue;
+        if (only) return false;
+        only = &o;
+      }
+      if (!only) return false;
+      const std::vector<int> types = corner_types(*only);
+      if (!std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) || !simple(*only) ||
+          pinched(*only) || units_[u].k > 2 || units_[u].k < -4)
+        return false;
+    }
+    return true;
   }
 
   bool withdraw_reflex_splits(const Outline& o) {
