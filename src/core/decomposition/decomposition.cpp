@@ -1963,10 +1963,7 @@ class Decomposer {
         // (section 4.3): accepted when nothing could split them apart.
         int k = 0;
         for (int u : list) k += units_[u].k;
-        const Outline& o = outlines[outlines_of[comp].front()];
-        const std::vector<int> types = corner_types(o);
-        ok = std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) &&
-             !pinched(o) && k <= 2 && k >= -4 &&
+        ok = polygon_block(outlines[outlines_of[comp].front()], k) &&
              (list.size() == 1 || std::any_of(list.begin(), list.end(), [&](int u) { return !fixable(u); }));
       }
       if (ok && list.size() > 1 && std::none_of(list.begin(), list.end(), [&](int u) { return fixable(u); }) &&
@@ -2000,10 +1997,11 @@ class Decomposer {
   // elements shrink (0.40 at a hundredth of the diagonal); parted, a 3-sided
   // block round each fillet and a mapped middle. Kept only if so.
   bool part_at_junction(int comp, const std::vector<int>& list) {
+    Pieces p = pieces();  // the same for every try: a failed one is taken back
     for (std::size_t v = 0; v < axis_.vertices.size(); ++v) {
       if (rep_[v] != static_cast<int>(v) || vertex_cut(static_cast<int>(v)) ||
           axis_.vertices[v].kind != MedialVertexKind::Junction || ends_[v].size() < 3 ||
-          pieces().find(static_cast<int>(v)) != comp)
+          p.find(static_cast<int>(v)) != comp)
         continue;
       Cut c;
       c.vertex = static_cast<int>(v);
@@ -2046,13 +2044,18 @@ class Decomposer {
         if (only) return false;
         only = &o;
       }
-      if (!only) return false;
-      const std::vector<int> types = corner_types(*only);
-      if (!std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) || !simple(*only) ||
-          pinched(*only) || units_[u].k > 2 || units_[u].k < -4)
-        return false;
+      if (!only || !polygon_block(*only, units_[u].k)) return false;
     }
     return true;
+  }
+
+  // Whether an outline can be a polygon block round singularities of net k:
+  // convex or flat corners only, a single simple outline that never comes
+  // back to a point, and at most six sides (k from -4 to +2).
+  bool polygon_block(const Outline& o, int k) const {
+    const std::vector<int> types = corner_types(o);
+    return std::all_of(types.begin(), types.end(), [](int t) { return t == 1 || t == 2; }) && simple(o) &&
+           !pinched(o) && k <= 2 && k >= -4;
   }
 
   bool withdraw_reflex_splits(const Outline& o) {
