@@ -288,6 +288,30 @@ TEST(IntervalAssignment, TriangleWithOddGoalSumBecomesEven) {
   EXPECT_EQ(std::abs(a.counts[0] - 5) + std::abs(a.counts[1] - 4) + std::abs(a.counts[2] - 4), 1);
 }
 
+// The end of an ellipse cut off by two lines: a triangle whose curved side
+// wants nearly the other two together. By the sides alone the line from the
+// centre to the curve gets one interval (elements 20 times the target along
+// it); its goal (its length over the target size) gives it most of those.
+TEST(IntervalAssignment, TriangleLineToItsLongSideKeepsNearItsGoal) {
+  IntervalProblem p = single(BlockTemplate::Midpoint, {1, 1, 1}, {114, 57, 57});
+  const IntervalAssignment alone = assign_intervals(p);
+  expect_valid(p, alone);
+  EXPECT_EQ(alone.params[0][0], 1);
+  p.blocks[0].spoke_goals = {20.0, 10.0, 10.0};
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  EXPECT_GE(a.params[0][0], 12) << ::testing::PrintToString(a.counts);
+  // The curved side gives way by less than a third.
+  EXPECT_GE(a.counts[0], 2 * 114 / 3) << ::testing::PrintToString(a.counts);
+  // Lines finer than their goal cost nothing: a regular triangle keeps its sides.
+  IntervalProblem regular = single(BlockTemplate::Midpoint, {1, 1, 1}, {10, 10, 10});
+  regular.blocks[0].spoke_goals = {2.9, 2.9, 2.9};
+  EXPECT_EQ(assign_intervals(regular).counts, (std::vector<int>{10, 10, 10}));
+  IntervalProblem bad = regular;
+  bad.blocks[0].spoke_goals = {1.0, 1.0};
+  EXPECT_THROW(assign_intervals(bad), std::invalid_argument);
+}
+
 TEST(IntervalAssignment, FiveAndSixSidedMidpointBlocks) {
   IntervalProblem five = single(BlockTemplate::Midpoint, {1, 1, 1, 1, 1}, {6, 7.5, 5, 9, 6.2});
   IntervalAssignment a = assign_intervals(five);

@@ -134,6 +134,29 @@ TEST(Meshing, LensOfAnEllipticArcOnItsChordMeshes) {
   }
 }
 
+// An ellipse, 2 by 1: each end is a triangle block whose curved side is
+// nearly as long as its two cuts together. With only the sides' goals the
+// line from its centre to the curve kept one interval however fine the mesh:
+// at a hundredth of the diagonal a fan of elements 23 times longer than the
+// target (scaled Jacobian 0.58 where it met the cuts).
+TEST(Meshing, EllipseEndsKeepElementsNearTheTargetSizeWhenFine) {
+  const FaceModel face =
+      test::face({{BoundaryEdge{EllipseCurve{{0, 0}, {1, 0}, 2.0, 1.0, 1}, 0.0, 2 * kPi, 0, {}, {}}}}, "ellipse");
+  for (const double fraction : {0.05, 0.02, 0.01}) {
+    PipelineOptions options;
+    options.meshing.size = fraction * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    const QuadMesh& mesh = m.blocks.mesh;
+    EXPECT_TRUE(test::mesh_problems(face, mesh, options.meshing.size).empty()) << fraction;
+    double longest = 0.0;
+    for (const auto& q : mesh.quads)
+      for (int i = 0; i < 4; ++i) longest = std::max(longest, distance(mesh.nodes[q[i]], mesh.nodes[q[(i + 1) % 4]]));
+    EXPECT_LT(longest, 3.0 * options.meshing.size) << fraction;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.7) << fraction;
+    EXPECT_EQ(m.quality.irregular_interior.size(), 4u) << fraction;
+  }
+}
+
 // A curvilinear triangle of three cusps: two touching unit circles and the
 // line under both. Near a cusp every medial angle tends to pi, so ranking
 // splits by it cut each tip off a few hundredths from its point: a sliver

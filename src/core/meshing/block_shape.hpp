@@ -29,6 +29,15 @@ struct BlockShape {
   // interval from s along s's inward (outward) normal (a soft condition: the
   // lattice outline must not fold onto itself).
   std::vector<std::pair<int, int>> facing, facing_outside;
+  // Submap: per pair of `facing`, the intervals across wanted (the narrowest
+  // distance between the two sides over the target size); empty for none.
+  // Far more lattice lines across than that crowd into the narrows.
+  std::vector<double> facing_goals;
+  // Midpoint: per side, the intervals the line from the block's centre to
+  // that side wants at least (its length over the target size); empty for
+  // none. Without it a side nearly as long as the others together leaves
+  // that line one interval: elements many times longer than the target.
+  std::vector<double> spoke_goals;
 };
 
 // Template parameters (BlockIntervals::params), n_i the intervals of side i:

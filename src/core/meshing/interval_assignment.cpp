@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -126,6 +127,18 @@ void validate(const IntervalProblem& problem) {
     for (int type : block.corner_types)
       if (type < 0 || type > 4)
         throw std::invalid_argument(block_name(b) + " has corner type " + std::to_string(type) + " (must be 0..4)");
+    if (block.facing_goals.size() > block.facing.size())
+      throw std::invalid_argument(block_name(b) + ": more facing goals than facing pairs");
+    for (double goal : block.facing_goals)
+      if (!std::isfinite(goal) || goal < 0)
+        throw std::invalid_argument(block_name(b) + " has facing goal " + std::to_string(goal) +
+                                    " (must be finite and >= 0)");
+    if (!block.spoke_goals.empty() && (block.kind != BlockTemplate::Midpoint || block.spoke_goals.size() != sides))
+      throw std::invalid_argument(block_name(b) + ": spoke goals are one per side of a midpoint block");
+    for (double goal : block.spoke_goals)
+      if (!std::isfinite(goal) || goal < 0)
+        throw std::invalid_argument(block_name(b) + " has spoke goal " + std::to_string(goal) +
+                                    " (must be finite and >= 0)");
     std::vector<std::pair<int, int>> pairs = block.facing;
     pairs.insert(pairs.end(), block.facing_outside.begin(), block.facing_outside.end());
     for (const auto& [s, t] : pairs)
@@ -418,6 +431,25 @@ bool within_relative(double n, const IntervalSegment& seg) {
   return n >= std::max(seg.goal, 1.0) - 1.0 - 1e-9;
 }
 
+// The columns of a count below `base` (= floor of its goal g) in `row`: 1 / g
+// a unit (`ratio` false), or goal_cost's secants (see add_goal_deviation).
+// Returns the steepest unit cost.
+double add_shortfall(Model& model, LinearExpr& row, double g, double base, int min_count, bool ratio) {
+  double steepest = 1.0 / g, k = base;
+  if (ratio) {
+    const double lowest = std::max<double>(min_count, std::ceil(g / kSteepRatio));
+    while (k > lowest) {
+      const double next = std::max(lowest, k - std::max(1.0, std::floor(k / 16.0)));
+      steepest = (goal_cost(next, g) - goal_cost(k, g)) / (k - next);
+      row[model.add_column(0.0, k - next, steepest, false)] += 1.0;
+      k = next;
+    }
+    if (k > min_count) steepest = std::max(steepest, goal_cost(k - 1.0, g) - goal_cost(k, g));
+  }
+  if (!ratio || k > min_count) row[model.add_column(0.0, kUnbounded, steepest, false)] += 1.0;
+  return steepest;
+}
+
 // The cost as the LP sees it at integer n: from floor(goal) up one unit it
 // changes by (1 - 2 frac) / g, then by 1 / g a unit. Going down: `ratio`
 // false, 1 / g a unit (|n - g| / g all the way: the first stage, see
@@ -452,20 +484,48 @@ double add_goal_deviation(Model& model, int n, const IntervalSegment& seg, bool 
   if (convex) slope = cap / (2.0 * g * g);  // the unit's cost at the cap, on beyond
   row[model.add_column(0.0, kUnbounded, slope, false)] -= 1.0;
   const double steepest_above = slope;
-  double steepest = 1.0 / g, k = base;
-  if (ratio) {
-    const double lowest = std::max<double>(seg.min_count, std::ceil(g / kSteepRatio));
-    while (k > lowest) {
-      const double next = std::max(lowest, k - std::max(1.0, std::floor(k / 16.0)));
-      steepest = (goal_cost(next, g) - goal_cost(k, g)) / (k - next);
-      row[model.add_column(0.0, k - next, steepest, false)] += 1.0;
-      k = next;
-    }
-    if (k > seg.min_count) steepest = std::max(steepest, goal_cost(k - 1.0, g) - goal_cost(k, g));
-  }
-  if (!ratio || k > seg.min_count) row[model.add_column(0.0, kUnbounded, steepest, false)] += 1.0;
+  const double steepest = add_shortfall(model, row, g, base, seg.min_count, ratio);
   model.add_equation(row, base, true);
   return std::max(steepest, steepest_above);
+}
+
+// A midpoint block's line from its centre to a side (c columns) coarser
+// than its goal costs as a segment's count below its goal does; finer, nothing
+// (a regular triangle's lines are shorter than half its sides, which they
+// equal in intervals). Not a goal row: the direct answer must not need it.
+// Returns the steepest unit cost.
+double add_spoke_floor(Model& model, int c, double goal, bool ratio) {
+  const double base = std::floor(goal);
+  if (base < 2.0) return 0.0;  // c >= 1 anyway
+  LinearExpr row = column(c);
+  row[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;  // above the goal: free
+  const double steepest = add_shortfall(model, row, goal, base, 1, ratio);
+  model.add_equation(row, base);
+  return steepest;
+}
+
+// Lattice lines across facing sides beyond kCrowding times the goal (and a
+// few more) crowd through the narrows between the two sides (a slot near
+// the outline: 20 lines in a gap of 3 elements, folded at fine sizes).
+constexpr double kCrowding = 2.0;
+constexpr double kCrowdingSlack = 4.0;
+
+double crowding_cap(double goal) {
+  const double g = std::max(goal, 1.0);
+  return std::floor(std::max(kCrowding * g, g + kCrowdingSlack));
+}
+
+// Which facing pairs of a submapped block get a crowding row (Crowded).
+using Crowded = std::set<std::pair<size_t, size_t>>;  // block, index into its facing pairs
+
+// Lines across beyond the cap cost as intervals above a segment's goal.
+// Not a goal row (see direct_outcome).
+void add_crowding(Model& model, const LinearExpr& across, double goal) {
+  const double g = std::max(goal, 1.0);
+  LinearExpr row = across;
+  row[model.add_column(0.0, kUnbounded, 0.0, false)] += 1.0;      // room left
+  row[model.add_column(0.0, kUnbounded, 1.0 / g, false)] -= 1.0;  // crowded
+  model.add_equation(row, crowding_cap(goal));
 }
 
 // The midpoint equations L_i = c_{i-1} + c_{i+1}; returns the c columns.
@@ -500,7 +560,8 @@ std::vector<int> add_two_sided(Model& model, const LinearExpr& n0, const LinearE
 }
 
 // Blocks [0, block_limit) only, so that a failure can be traced to a block.
-BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio, bool convex) {
+BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio, bool convex,
+                 const Crowded& crowded = {}) {
   BuiltModel built;
   Model& model = built.model;
   double smallest_weight = 1.0, steepest = 1.0, total_goal = 0.0;
@@ -511,6 +572,12 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
     built.count_columns.push_back(n);
     smallest_weight = std::min(smallest_weight, 1.0 / std::max(seg.goal, 1.0));
     total_goal += std::max(seg.goal, lower);
+  }
+  for (const BlockShape& block : problem.blocks) {
+    for (double goal : block.spoke_goals) {
+      Model scratch;  // only the spoke's unit costs, for `fold`
+      steepest = std::max(steepest, add_spoke_floor(scratch, scratch.add_integer(1.0), goal, ratio));
+    }
   }
   // Facing sides short of each other and slits that do not close fold the
   // lattice: dearer than any unit of goal deviation.
@@ -564,17 +631,24 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
             if (dense[s] != 0.0) e[built.count_columns[s]] = dense[s];
           return e;
         };
-        std::vector<std::tuple<int, int, int>> apart;  // side, other side, the normal's direction
-        for (const auto& [s, t] : block.facing) apart.emplace_back(s, t, (dirs[s] + 1) % 4);
-        for (const auto& [s, t] : block.facing_outside) apart.emplace_back(s, t, (dirs[s] + 3) % 4);
-        for (const auto& [s, t, normal] : apart) {
+        // side, other side, the normal's direction, crowding row, its goal
+        std::vector<std::tuple<int, int, int, bool, double>> apart;
+        for (size_t i = 0; i < block.facing.size(); ++i) {
+          const auto [s, t] = block.facing[i];
+          const bool crowd = crowded.count({b, i}) > 0;
+          apart.emplace_back(s, t, (dirs[s] + 1) % 4, crowd, crowd ? block.facing_goals[i] : 0.0);
+        }
+        for (const auto& [s, t] : block.facing_outside) apart.emplace_back(s, t, (dirs[s] + 3) % 4, false, 0.0);
+        for (const auto& [s, t, normal, crowd, goal] : apart) {
           Dense dense(counts);
           for (std::size_t k = 0; k < counts; ++k)
             dense[k] = (x[t][k] - x[s][k]) * step_x[normal] + (y[t][k] - y[s][k]) * step_y[normal];
-          LinearExpr gap = sparse(dense);
+          const LinearExpr across = sparse(dense);
+          LinearExpr gap = across;
           gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;   // surplus
           gap[model.add_column(0.0, kUnbounded, fold, false)] += 1.0;  // shortfall
           model.add_equation(gap, 1.0);
+          if (crowd) add_crowding(model, across, goal);
         }
         // A segment the outline runs along twice (a split to a hole) whose
         // outline between the two runs turns a full clockwise round (a hole
@@ -613,7 +687,11 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
         }
         break;
       }
-      case BlockTemplate::Midpoint: params = add_midpoint(model, sides); break;
+      case BlockTemplate::Midpoint:
+        params = add_midpoint(model, sides);
+        for (size_t i = 0; i < block.spoke_goals.size(); ++i)
+          add_spoke_floor(model, params[i], block.spoke_goals[i], ratio);
+        break;
       case BlockTemplate::TwoSided: params = add_two_sided(model, sides[0], sides[1], balance); break;
       case BlockTemplate::OneSided: {
         const int u = model.add_integer(1.0);
@@ -793,6 +871,105 @@ size_t first_impossible_block(const IntervalProblem& problem) {
   return infeasible - 1;
 }
 
+// The counts in stages (see assign_intervals), with crowding rows for the
+// `crowded` facing pairs.
+IntervalAssignment solve_in_stages(const IntervalProblem& problem, const Crowded& crowded) {
+  // First with |n - g| / g all the way down: if no count then lies more than
+  // one interval below its goal, that answer costs the same in goal_cost and
+  // nothing can cost less there (goal_cost is never below |n - g| / g, nor
+  // are the fold rows cheaper), so it is kept: faces without such a conflict
+  // keep the counts they had before goal_cost. Else solved again in goal_cost,
+  // and that answer taken only if it costs less than the first one does in
+  // goal_cost (not one of the answers of equal cost the solver meets first
+  // on another path: rings of segments alike flipped, and smoothing's result
+  // with them).
+  BuiltModel built = build(problem, problem.blocks.size(), false, false, crowded);
+  Model::Outcome outcome = direct_outcome(problem, built);
+  if (outcome.values.empty()) outcome = built.model.solve();
+  if (outcome.infeasible) {
+    const size_t b = first_impossible_block(problem);
+    throw IntervalsInfeasible(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
+                              " sides): its template's conditions cannot hold together with those of the blocks "
+                              "before it, whatever the goals");
+  }
+  // A count piled up far above its goal (a gear ring's bore side, 56 to 75
+  // times): solved again with the unit costs growing from twice the goal
+  // (add_goal_deviation), which spreads such excess. Only then: those
+  // columns make the problem over twice as large, and on the shared faces,
+  // whose counts reach 4 times their goals at most, the solves took twice
+  // as long (fractional optima, more CBC) for no better mesh.
+  bool convex = false;
+  for (size_t s = 0; s < problem.segments.size() && !convex; ++s) {
+    const IntervalSegment& seg = problem.segments[s];
+    convex = outcome.values[built.count_columns[s]] >
+             std::max<double>(std::ceil(kPiledUp * std::max(seg.goal, 1.0)), seg.min_count) + 0.5;
+  }
+  if (convex) {
+    built = build(problem, problem.blocks.size(), false, true, crowded);
+    outcome = built.model.solve();
+  }
+  bool coarse = false;
+  for (size_t s = 0; s < problem.segments.size(); ++s)
+    coarse = coarse || !within_relative(outcome.values[built.count_columns[s]], problem.segments[s]);
+  for (size_t b = 0; b < problem.blocks.size(); ++b)
+    for (size_t i = 0; i < problem.blocks[b].spoke_goals.size(); ++i)
+      coarse = coarse || outcome.values[built.param_columns[b][i]] < problem.blocks[b].spoke_goals[i] - 1.0 - 1e-9;
+  IntervalAssignment answer = read_answer(built, outcome.values);
+  if (coarse) {
+    const BuiltModel second = build(problem, problem.blocks.size(), true, convex, crowded);
+    Model::Outcome better;
+    try {
+      better = second.model.solve();
+    } catch (const std::runtime_error&) {  // no answer within CBC's time: the first stands
+      better.infeasible = true;
+    }
+    std::vector<double> first(second.model.columns(), 0.0);
+    for (size_t s = 0; s < answer.counts.size(); ++s) first[second.count_columns[s]] = answer.counts[s];
+    for (size_t b = 0; b < answer.params.size(); ++b)
+      for (size_t i = 0; i < answer.params[b].size(); ++i) first[second.param_columns[b][i]] = answer.params[b][i];
+    const double kept = second.model.least_cost(first);
+    std::vector<double> found = better.values;
+    if (!better.infeasible && second.model.least_cost(found) < kept - 1e-12 * (1.0 + std::abs(kept))) {
+      outcome = better;
+      answer = read_answer(second, better.values);
+    }
+  }
+  if (!outcome.proven_optimal)
+    answer.notes.push_back(
+        "interval assignment: CBC stopped at its time limit; the counts are the best found, "
+        "not proven to deviate least from the goals");
+  return answer;
+}
+
+// Rounds of solving again with more facing pairs' crowding rows.
+constexpr int kCrowdingRounds = 3;
+
+// The facing pairs of submapped blocks with more lattice lines across them
+// for the given counts than crowding_cap of their goal.
+Crowded crowded_pairs(const IntervalProblem& problem, const std::vector<int>& counts) {
+  Crowded crowded;
+  const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
+  for (size_t b = 0; b < problem.blocks.size(); ++b) {
+    const BlockShape& block = problem.blocks[b];
+    if (block.kind != BlockTemplate::Submap || block.facing_goals.empty()) continue;
+    const std::vector<int> dirs = submap_directions(block, b);
+    std::vector<long> x(block.side_segments.size(), 0), y = x;  // where each side starts
+    for (size_t i = 1; i < block.side_segments.size(); ++i) {
+      long n = 0;
+      for (int seg : block.side_segments[i - 1]) n += counts[seg];
+      x[i] = x[i - 1] + n * step_x[dirs[i - 1]];
+      y[i] = y[i - 1] + n * step_y[dirs[i - 1]];
+    }
+    for (size_t i = 0; i < block.facing_goals.size(); ++i) {
+      const auto [s, t] = block.facing[i];
+      const int normal = (dirs[s] + 1) % 4;
+      const long across = (x[t] - x[s]) * step_x[normal] + (y[t] - y[s]) * step_y[normal];
+      if (block.facing_goals[i] > 0.0 && across > crowding_cap(block.facing_goals[i])) crowded.insert({b, i});
+    }
+  }
+  return crowded;
+}
+
 }  // namespace
 
 std::vector<FoldedSides> folded_sides(const BlockShape& block, const std::vector<int>& counts) {
@@ -844,67 +1021,18 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
     if (problem.blocks[b].kind == BlockTemplate::Submap) submap_directions(problem.blocks[b], b);
 
   if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
-  // First with |n - g| / g all the way down: if no count then lies more than
-  // one interval below its goal, that answer costs the same in goal_cost and
-  // nothing can cost less there (goal_cost is never below |n - g| / g, nor
-  // are the fold rows cheaper), so it is kept: faces without such a conflict
-  // keep the counts they had before goal_cost. Else solved again in goal_cost,
-  // and that answer taken only if it costs less than the first one does in
-  // goal_cost (not one of the answers of equal cost the solver meets first
-  // on another path: rings of segments alike flipped, and smoothing's result
-  // with them).
-  BuiltModel built = build(problem, problem.blocks.size(), false, false);
-  Model::Outcome outcome = direct_outcome(problem, built);
-  if (outcome.values.empty()) outcome = built.model.solve();
-  if (outcome.infeasible) {
-    const size_t b = first_impossible_block(problem);
-    throw IntervalsInfeasible(block_name(b) + " (" + std::to_string(problem.blocks[b].side_segments.size()) +
-                              " sides): its template's conditions cannot hold together with those of the blocks "
-                              "before it, whatever the goals");
+  IntervalAssignment answer = solve_in_stages(problem, {});
+  // Facing sides the answer crowds get their crowding rows, and the counts
+  // are solved again (only then: these rows change which of the answers of
+  // equal cost the solver meets, and so the meshes of faces they would not
+  // constrain at all).
+  Crowded crowded;
+  for (int round = 0; round < kCrowdingRounds; ++round) {
+    const std::size_t before = crowded.size();
+    for (const auto& pair : crowded_pairs(problem, answer.counts)) crowded.insert(pair);
+    if (crowded.size() == before) break;
+    answer = solve_in_stages(problem, crowded);
   }
-  // A count piled up far above its goal (a gear ring's bore side, 56 to 75
-  // times): solved again with the unit costs growing from twice the goal
-  // (add_goal_deviation), which spreads such excess. Only then: those
-  // columns make the problem over twice as large, and on the shared faces,
-  // whose counts reach 4 times their goals at most, the solves took twice
-  // as long (fractional optima, more CBC) for no better mesh.
-  bool convex = false;
-  for (size_t s = 0; s < problem.segments.size() && !convex; ++s) {
-    const IntervalSegment& seg = problem.segments[s];
-    convex = outcome.values[built.count_columns[s]] >
-             std::max<double>(std::ceil(kPiledUp * std::max(seg.goal, 1.0)), seg.min_count) + 0.5;
-  }
-  if (convex) {
-    built = build(problem, problem.blocks.size(), false, true);
-    outcome = built.model.solve();
-  }
-  bool coarse = false;
-  for (size_t s = 0; s < problem.segments.size(); ++s)
-    coarse = coarse || !within_relative(outcome.values[built.count_columns[s]], problem.segments[s]);
-  IntervalAssignment answer = read_answer(built, outcome.values);
-  if (coarse) {
-    const BuiltModel second = build(problem, problem.blocks.size(), true, convex);
-    Model::Outcome better;
-    try {
-      better = second.model.solve();
-    } catch (const std::runtime_error&) {  // no answer within CBC's time: the first stands
-      better.infeasible = true;
-    }
-    std::vector<double> first(second.model.columns(), 0.0);
-    for (size_t s = 0; s < answer.counts.size(); ++s) first[second.count_columns[s]] = answer.counts[s];
-    for (size_t b = 0; b < answer.params.size(); ++b)
-      for (size_t i = 0; i < answer.params[b].size(); ++i) first[second.param_columns[b][i]] = answer.params[b][i];
-    const double kept = second.model.least_cost(first);
-    std::vector<double> found = better.values;
-    if (!better.infeasible && second.model.least_cost(found) < kept - 1e-12 * (1.0 + std::abs(kept))) {
-      outcome = better;
-      answer = read_answer(second, better.values);
-    }
-  }
-  if (!outcome.proven_optimal)
-    answer.notes.push_back(
-        "interval assignment: CBC stopped at its time limit; the counts are the best found, "
-        "not proven to deviate least from the goals");
   const std::string violation = first_violation(problem, answer);
   if (!violation.empty()) throw SelfCheckError("interval assignment", violation);
   return answer;

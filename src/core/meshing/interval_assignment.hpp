@@ -55,7 +55,11 @@ struct IntervalsInfeasible : std::runtime_error {
 // the equations leave free (Disc a, b; TwoSided and OneSided u, v) are chosen
 // by a tie-break far below one interval of deviation: a ~ b, the midpoint
 // triangle's sides alike, OneSided u ~ v with its two rest sides alike; among
-// equal deviations the fewest intervals. Solved by Clp's LP relaxation when
+// equal deviations the fewest intervals. A midpoint block's c_i below its
+// spoke goal costs as a count below its goal; a submapped block's facing
+// pair with far more lattice lines across than its facing goal (see
+// BlockShape) gets a row costing the excess, and the counts are solved
+// again (only for pairs the answer crowds). Solved by Clp's LP relaxation when
 // that is integral, else by CBC (10 s limit, best integer answer then). Bad
 // input (ids out of range, wrong side or corner counts, a submap outline not
 // turning +4) throws std::invalid_argument; a problem no counts satisfy throws

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "geometry/polygon.hpp"
 #include "meshing/block_templates.hpp"
 #include "meshing/interval_assignment.hpp"
 #include "meshing/smoothing.hpp"
@@ -507,11 +508,65 @@ class BlockMesher {
       problem.segments.push_back(is);
     }
     problem.blocks = shapes_;
+    for (std::size_t b = 0; b < shapes_.size(); ++b) {
+      if (shapes_[b].kind == BlockTemplate::Midpoint) problem.blocks[b].spoke_goals = spoke_goals(b);
+      if (shapes_[b].kind == BlockTemplate::Submap) problem.blocks[b].facing_goals = facing_goals(b);
+    }
     return problem;
   }
 
  private:
   void fail(const std::string& check) const { throw SelfCheckError(face_.name, "mesh: " + check); }
+
+  // A midpoint block's distance from its centre (its singularity, else its
+  // outline's mean point) to each side, over the target size.
+  std::vector<double> spoke_goals(std::size_t b) const {
+    const Block& block = d_.blocks[b];
+    Vec2 centre;
+    if (block.singularity >= 0) {
+      centre = d_.singularities[block.singularity].p;
+    } else {
+      for (Vec2 p : block.outline) centre = centre + p;
+      centre = centre / static_cast<double>(block.outline.size());
+    }
+    std::vector<double> goals;
+    for (const std::vector<int>& side : shapes_[b].side_segments) {
+      double nearest = std::numeric_limits<double>::max();
+      for (const std::vector<Vec2>& line : side_lines(side))
+        for (std::size_t k = 0; k + 1 < line.size(); ++k)
+          nearest = std::min(nearest, distance_to_segment(centre, line[k], line[k + 1]));
+      goals.push_back(nearest / options_.size);
+    }
+    return goals;
+  }
+
+  // A submapped block's narrowest distance between each facing pair of
+  // sides, over the target size.
+  std::vector<double> facing_goals(std::size_t b) const {
+    std::vector<double> goals;
+    for (const auto& [s, t] : shapes_[b].facing) {
+      const std::vector<std::vector<Vec2>> from = side_lines(shapes_[b].side_segments[s]);
+      const std::vector<std::vector<Vec2>> to = side_lines(shapes_[b].side_segments[t]);
+      double nearest = std::numeric_limits<double>::max();
+      for (const std::vector<Vec2>& a : from)
+        for (const Vec2 p : a)
+          for (const std::vector<Vec2>& line : to)
+            for (std::size_t k = 0; k + 1 < line.size(); ++k)
+              nearest = std::min(nearest, distance_to_segment(p, line[k], line[k + 1]));
+      goals.push_back(nearest / options_.size);
+    }
+    return goals;
+  }
+
+  // The segments of a block side as polylines (boundary pieces sampled).
+  std::vector<std::vector<Vec2>> side_lines(const std::vector<int>& side) const {
+    std::vector<std::vector<Vec2>> lines;
+    for (int id : side) {
+      const Segment& s = segments_[id];
+      lines.push_back(s.split >= 0 ? s.line : sample_piece(edge_of(s), s.t_from, s.t_to, 16).points);
+    }
+    return lines;
+  }
 
   // Segments and, per block, the pieces of its sides as segments used
   // forwards or backwards; the block shapes for interval assignment.
