@@ -3,6 +3,7 @@
 // corners (the last joins the first), used by the decomposition's self-check
 // and its pictures and by the medial axis's nearest boundary search.
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "geometry/vec2.hpp"
@@ -44,6 +45,13 @@ inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   const double len2 = dot(d, d);
   const double f = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
   return distance(a + f * d, p);
+}
+
+// The distance from p to an open polyline (infinite if it has no segment).
+inline double distance_to_polyline(const std::vector<Vec2>& line, Vec2 p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) best = std::min(best, distance_to_segment(p, line[k], line[k + 1]));
+  return best;
 }
 
 // The distance from p to the polygon's outline.

@@ -533,8 +533,7 @@ class BlockMesher {
     for (const std::vector<int>& side : shapes_[b].side_segments) {
       double nearest = std::numeric_limits<double>::max();
       for (const std::vector<Vec2>& line : side_lines(side))
-        for (std::size_t k = 0; k + 1 < line.size(); ++k)
-          nearest = std::min(nearest, distance_to_segment(centre, line[k], line[k + 1]));
+        nearest = std::min(nearest, distance_to_polyline(line, centre));
       goals.push_back(nearest / options_.size);
     }
     return goals;
@@ -543,16 +542,15 @@ class BlockMesher {
   // A submapped block's narrowest distance between each facing pair of
   // sides, over the target size.
   std::vector<double> facing_goals(std::size_t b) const {
+    if (shapes_[b].facing.empty()) return {};
+    std::vector<std::vector<std::vector<Vec2>>> lines;  // per side, sampled once for all its pairs
+    for (const std::vector<int>& side : shapes_[b].side_segments) lines.push_back(side_lines(side));
     std::vector<double> goals;
     for (const auto& [s, t] : shapes_[b].facing) {
-      const std::vector<std::vector<Vec2>> from = side_lines(shapes_[b].side_segments[s]);
-      const std::vector<std::vector<Vec2>> to = side_lines(shapes_[b].side_segments[t]);
       double nearest = std::numeric_limits<double>::max();
-      for (const std::vector<Vec2>& a : from)
-        for (const Vec2 p : a)
-          for (const std::vector<Vec2>& line : to)
-            for (std::size_t k = 0; k + 1 < line.size(); ++k)
-              nearest = std::min(nearest, distance_to_segment(p, line[k], line[k + 1]));
+      for (const std::vector<Vec2>& from : lines[s])
+        for (const Vec2 p : from)
+          for (const std::vector<Vec2>& to : lines[t]) nearest = std::min(nearest, distance_to_polyline(to, p));
       goals.push_back(nearest / options_.size);
     }
     return goals;
