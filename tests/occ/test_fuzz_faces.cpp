@@ -113,6 +113,7 @@
 #include <optional>
 
 #include "decomposition_checks.hpp"
+#include "geometry/polygon.hpp"
 #include "medial/medial_axis.hpp"
 #include "medial/nearest_boundary.hpp"
 #include "medial_checks.hpp"
@@ -702,6 +703,57 @@ TEST(FuzzFaces, APolygonBlockNeverWrapsRoundAHole) {
     if (!m) continue;
     EXPECT_TRUE(m->blocks.notes.empty()) << name << ": " << ::testing::PrintToString(m->blocks.notes);
     EXPECT_GT(m->quality.min_scaled_jacobian, 0.5) << name;
+  }
+}
+
+// The interior angle of a block's outline at one of its corners, in degrees.
+double corner_angle(const Block& b, Vec2 corner) {
+  const std::vector<Vec2>& o = b.outline;
+  const std::size_t n = o.size();
+  std::size_t at = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (distance(o[i], corner) < distance(o[at], corner)) at = i;
+  const double tiny = 1e-9 * norm(o[(at + n / 2) % n] - o[at]);
+  std::size_t before = (at + n - 1) % n, after = (at + 1) % n;
+  while (distance(o[before], o[at]) <= tiny) before = (before + n - 1) % n;
+  while (distance(o[after], o[at]) <= tiny) after = (after + 1) % n;
+  const Vec2 in = o[at] - o[before], out = o[after] - o[at];
+  return 180.0 - std::atan2(cross(in, out), dot(in, out)) * 180.0 / M_PI;
+}
+
+// Smooth blobs (fuzz seeds 1 and 2) cut into wedges, each between two cuts
+// and the boundary: three corners and no singularity. Submapped, a wedge
+// needed a fourth corner on its smooth side, one element there with an
+// angle near 180 degrees, ever nearer as the elements shrink (minimum 0.32
+// to 0.35 at 0.05 of the diagonal, 0.07 to 0.10 at 0.01). Now a triangle
+// round a k = -1 of its own: no convex corner where an outline runs on,
+// every boundary node with the elements its angle asks, and the quality
+// holds under refinement.
+TEST(FuzzFaces, WedgesOfThreeCornersAreTrianglesNotSubmapsWithACornerOnACurve) {
+  for (const char* name : {"bspline_1_2", "bspline_1_1917", "bspline_2_792"}) {
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
+    const MedialAxis axis = compute_medial_axis(face);
+    const MeshFlow flow = compute_mesh_flow(face, axis);
+    const Decomposition d = decompose(face, axis, flow, {});
+    const auto problems = test::decomposition_problems(face, flow, d);
+    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+    int triangles = 0;
+    for (const Block& b : d.blocks) {
+      for (const BlockCorner& c : b.corners)
+        if (c.type == 1) EXPECT_LT(corner_angle(b, c.p), 157.5) << name << " corner at " << c.p.x << ", " << c.p.y;
+      if (b.kind != BlockKind::Polygon || b.corners.size() != 3) continue;
+      ++triangles;
+      ASSERT_GE(b.singularity, 0) << name;
+      EXPECT_EQ(d.singularities[b.singularity].k, -1) << name;
+      EXPECT_TRUE(inside_polygon(b.outline, d.singularities[b.singularity].p)) << name;
+    }
+    EXPECT_GE(triangles, 4) << name;
+    for (const double size_factor : {0.05, 0.01}) {
+      const std::optional<MeshedFace> m = valid_mesh_of(name, size_factor);
+      if (!m) continue;
+      EXPECT_TRUE(m->quality.irregular_boundary.empty()) << name << " at " << size_factor;
+      EXPECT_GT(m->quality.min_scaled_jacobian, 0.7) << name << " at " << size_factor;
+    }
   }
 }
 

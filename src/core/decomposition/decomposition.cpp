@@ -2478,9 +2478,21 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap && !make_submappable(face_, b, tol_, options_.submap_corners_follow_turning) &&
-            !cusp_to_polygon(o, b, d))
-          throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
+        if (b.kind == BlockKind::Submap) {
+          Block submapped = b;
+          const bool submaps = make_submappable(face_, submapped, tol_, options_.submap_corners_follow_turning);
+          if (submaps && !has_flat_convex_corner(submapped)) {
+            b = std::move(submapped);
+          } else if (simple(o) && flat_cornered_to_triangle(b, d)) {
+            d.notes.push_back(
+                "a block of three corners became a triangle round a k = -1 of its own, not a submap "
+                "with a corner where its outline runs straight");
+          } else if (submaps) {
+            b = std::move(submapped);
+          } else if (!cusp_to_polygon(o, b, d)) {
+            throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
+          }
+        }
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
       total += b.area;
@@ -2493,6 +2505,95 @@ class Decomposer {
       throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // An outline's centroid, if it lies inside the outline.
+  static std::optional<Vec2> centroid_inside(const std::vector<Vec2>& outline) {
+    Vec2 centroid{0, 0};
+    double area = 0.0;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+      const Vec2 p = outline[i], q = outline[(i + 1) % outline.size()];
+      const double a = cross(p, q);
+      area += a;
+      centroid = centroid + (p + q) * a;
+    }
+    if (!(std::abs(area) > 0.0)) return std::nullopt;
+    centroid = centroid / (3.0 * area);
+    if (!inside_polygon(outline, centroid)) return std::nullopt;
+    return centroid;
+  }
+
+  // A block's outline pieces, and at each piece start its corner's type (2 where none).
+  static std::pair<std::vector<OutlinePiece>, std::vector<int>> typed_pieces(const Block& b) {
+    std::vector<OutlinePiece> pieces;
+    std::vector<int> types;
+    for (std::size_t s = 0; s < b.sides.size(); ++s) {
+      for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
+        pieces.push_back(b.sides[s].pieces[k]);
+        types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
+      }
+    }
+    return {pieces, types};
+  }
+
+  // Whether a block has a convex corner where its outline runs nearly
+  // straight on (interior angle over 157.5 degrees: its element's scaled
+  // Jacobian under 0.38, nearer 0 as elements shrink along a smooth curve).
+  bool has_flat_convex_corner(const Block& b) const {
+    constexpr double kFlat = 1.75;
+    const auto [pieces, types] = typed_pieces(b);
+    const std::vector<double> angles = interior_angles(pieces, types, tol_);
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+      if (types[i] == 1 && angles[i] > kFlat) return true;
+    return false;
+  }
+
+  // A block with no singularity whose outline has three sharp convex
+  // corners and otherwise runs on, straight or gently curving, cannot be
+  // submapped without a fourth convex corner where it runs nearly straight:
+  // the one element there gets an angle near 180 degrees, ever nearer as
+  // the elements shrink (a smooth blob's wedges between two cuts: 0.32 at
+  // the default size, 0.06 at a tenth of it). Such a block becomes a
+  // triangle round a k = -1 singularity of its own at its centroid, a
+  // valence-3 node that smoothing floats to where its elements are best.
+  // Returns false when the block is not such a block.
+  bool flat_cornered_to_triangle(Block& b, Decomposition& d) const {
+    // The three corners are the piece starts sharper than kSharp (135
+    // degrees); no other may turn in by more than kReflex (198 degrees), nor
+    // a side turn by more than a quarter turn along it.
+    constexpr double kSharp = 1.5, kReflex = 2.2, kSideTurning = 1.0;
+    const auto [pieces, types] = typed_pieces(b);
+    const std::vector<double> angles = interior_angles(pieces, types, tol_);
+    std::vector<std::size_t> sharp;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      if (angles[i] <= kSharp) sharp.push_back(i);
+      if (angles[i] > kReflex || angles[i] <= 0.0) return false;
+    }
+    if (sharp.size() != 3) return false;
+    const std::optional<Vec2> centroid = centroid_inside(b.outline);
+    if (!centroid) return false;
+    std::vector<BlockCorner> corners;
+    std::vector<BlockSide> sides;
+    double turning = 0.0;  // along the side so far, in quarter turns
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const std::size_t i = (sharp.front() + k) % pieces.size();
+      if (std::find(sharp.begin(), sharp.end(), i) != sharp.end()) {
+        corners.push_back({pieces[i].points.front(), 1});
+        sides.emplace_back();
+        turning = 0.0;
+      } else {
+        turning += 2.0 - angles[i];
+      }
+      sides.back().pieces.push_back(pieces[i]);
+      turning += piece_quarters(pieces[i], tol_);
+      if (std::abs(turning) > kSideTurning) return false;
+    }
+    b.corners = std::move(corners);
+    b.sides = std::move(sides);
+    b.kind = BlockKind::Polygon;
+    b.singularity = static_cast<int>(d.singularities.size());
+    d.singularities.push_back({*centroid, -1, false, {}});
+    return true;
   }
 
   // A block of convex corners and cusps (corners of no element: a sharp
@@ -2509,22 +2610,13 @@ class Decomposer {
     if (m < 3 || m > 6 || !simple(o) || std::none_of(b.corners.begin(), b.corners.end(), cusp) ||
         std::any_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type > 1; }))
       return false;
-    Vec2 centroid{0, 0};
-    double area = 0.0;
-    for (std::size_t i = 0; i < b.outline.size(); ++i) {
-      const Vec2 p = b.outline[i], q = b.outline[(i + 1) % b.outline.size()];
-      const double a = cross(p, q);
-      area += a;
-      centroid = centroid + (p + q) * a;
-    }
-    if (!(std::abs(area) > 0.0)) return false;
-    centroid = centroid / (3.0 * area);
-    if (!inside_polygon(b.outline, centroid)) return false;
+    const std::optional<Vec2> centroid = centroid_inside(b.outline);
+    if (!centroid) return false;
     for (BlockCorner& c : b.corners) c.type = 1;
     b.kind = BlockKind::Polygon;
     if (m != 4) {
       b.singularity = static_cast<int>(d.singularities.size());
-      d.singularities.push_back({centroid, m - 4, false, {}});
+      d.singularities.push_back({*centroid, m - 4, false, {}});
     }
     d.notes.push_back("a block with a cusp that no typing submaps became a " + std::to_string(m) +
                       "-sided polygon (its cusp one element)");
