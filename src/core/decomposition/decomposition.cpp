@@ -2478,20 +2478,18 @@ class Decomposer {
         }
       } else {
         b.kind = convex && b.corners.size() == 4 && simple(o) ? BlockKind::Polygon : BlockKind::Submap;
-        if (b.kind == BlockKind::Submap) {
-          Block submapped = b;
-          const bool submaps = make_submappable(face_, submapped, tol_, options_.submap_corners_follow_turning);
-          if (submaps && !has_flat_convex_corner(submapped)) {
-            b = std::move(submapped);
-          } else if (simple(o) && flat_cornered_to_triangle(b, d)) {
-            d.notes.push_back(
-                "a block of three corners became a triangle round a k = -1 of its own, not a submap "
-                "with a corner where its outline runs straight");
-          } else if (submaps) {
-            b = std::move(submapped);
-          } else if (!cusp_to_polygon(o, b, d)) {
-            throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
-          }
+        Block typed = b;
+        const bool typeable = typed.kind == BlockKind::Polygon ||
+                              make_submappable(face_, typed, tol_, options_.submap_corners_follow_turning);
+        if ((!typeable || has_flat_convex_corner(typed)) && simple(o) && flat_cornered_to_polygon(b, d)) {
+          d.notes.push_back(
+              "a block of " + std::to_string(b.corners.size()) +
+              " corners became a polygon round a k = " + std::to_string(static_cast<int>(b.corners.size()) - 4) +
+              " of its own, not a quadrilateral with a corner where its outline runs straight");
+        } else if (typeable) {
+          b = std::move(typed);
+        } else if (!cusp_to_polygon(o, b, d)) {
+          throw SelfCheckFailure("decomposition: a block's corners cannot be typed for submapping");
         }
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
@@ -2548,20 +2546,21 @@ class Decomposer {
     return false;
   }
 
-  // A block with no singularity whose outline has three sharp convex
+  // A block with no singularity whose outline has two or three sharp convex
   // corners and otherwise runs on, straight or gently curving, cannot be
-  // submapped without a fourth convex corner where it runs nearly straight:
+  // submapped without more convex corners where it runs nearly straight:
   // the one element there gets an angle near 180 degrees, ever nearer as
   // the elements shrink (a smooth blob's wedges between two cuts: 0.32 at
-  // the default size, 0.06 at a tenth of it). Such a block becomes a
-  // triangle round a k = -1 singularity of its own at its centroid, a
-  // valence-3 node that smoothing floats to where its elements are best.
-  // Returns false when the block is not such a block.
-  bool flat_cornered_to_triangle(Block& b, Decomposition& d) const {
-    // The three corners are the piece starts sharper than kSharp (135
-    // degrees); no other may turn in by more than kReflex (198 degrees), nor
-    // a side turn by more than a quarter turn along it.
-    constexpr double kSharp = 1.5, kReflex = 2.2, kSideTurning = 1.0;
+  // the default size, 0.06 at a tenth of it). Such a block becomes the
+  // logically convex polygon of its m sharp corners round a singularity of
+  // k = m - 4 of its own at its centroid (a triangle round a k = -1, a D
+  // round a k = -2): valence-3 nodes that smoothing floats to where their
+  // elements are best. Returns false when the block is not such a block.
+  bool flat_cornered_to_polygon(Block& b, Decomposition& d) const {
+    // The corners are the piece starts sharper than kSharp (135 degrees); no
+    // other may turn in by more than kReflex (198 degrees), nor a side turn
+    // along it by more than a quarter turn (a triangle's) or a half turn (a D's).
+    constexpr double kSharp = 1.5, kReflex = 2.2;
     const auto [pieces, types] = typed_pieces(b);
     const std::vector<double> angles = interior_angles(pieces, types, tol_);
     std::vector<std::size_t> sharp;
@@ -2569,7 +2568,9 @@ class Decomposer {
       if (angles[i] <= kSharp) sharp.push_back(i);
       if (angles[i] > kReflex || angles[i] <= 0.0) return false;
     }
-    if (sharp.size() != 3) return false;
+    const int m = static_cast<int>(sharp.size());
+    if (m != 2 && m != 3) return false;
+    const double side_turning = m == 3 ? 1.0 : 2.0;
     const std::optional<Vec2> centroid = centroid_inside(b.outline);
     if (!centroid) return false;
     std::vector<BlockCorner> corners;
@@ -2586,13 +2587,13 @@ class Decomposer {
       }
       sides.back().pieces.push_back(pieces[i]);
       turning += piece_quarters(pieces[i], tol_);
-      if (std::abs(turning) > kSideTurning) return false;
+      if (std::abs(turning) > side_turning) return false;
     }
     b.corners = std::move(corners);
     b.sides = std::move(sides);
     b.kind = BlockKind::Polygon;
     b.singularity = static_cast<int>(d.singularities.size());
-    d.singularities.push_back({*centroid, -1, false, {}});
+    d.singularities.push_back({*centroid, m - 4, false, {}});
     return true;
   }
 
