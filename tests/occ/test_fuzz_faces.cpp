@@ -764,6 +764,47 @@ TEST(FuzzFaces, BlocksOfTwoOrThreeCornersArePolygonsNotSubmapsWithCornersOnACurv
   }
 }
 
+// Filleted plates (fuzz seeds 1 and 6): the k = -1 of each fillet's finite
+// contact could not keep a convex block and was fixed on its arc, a convex
+// corner in the fillet's middle with one element there, its angle near 180
+// degrees (minimum 0.39 to 0.45 at 0.05 of the diagonal, 0.31 to 0.42 at
+// 0.01; 3 to 5 boundary nodes off their element count). Now the arc's sector,
+// cut off by the two radii from the fillet's centre, is a triangle round
+// that singularity, floating again.
+TEST(FuzzFaces, AFilletsFixedSingularityGetsTheArcsSectorAsItsTriangle) {
+  for (const char* name : {"filleted_1_1490", "filleted_1_1980", "filleted_1_910", "filleted_6_915"}) {
+    const FaceModel face = test::data_face(std::string("fuzz/") + name);
+    const MedialAxis axis = compute_medial_axis(face);
+    const MeshFlow flow = compute_mesh_flow(face, axis);
+    const Decomposition d = decompose(face, axis, flow, {});
+    const auto problems = test::decomposition_problems(face, flow, d);
+    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+    int sectors = 0;  // triangles whose curved side is one whole circle edge
+    for (const Block& b : d.blocks) {
+      if (b.kind != BlockKind::Polygon || b.corners.size() != 3) continue;
+      for (const BlockSide& side : b.sides) {
+        const OutlinePiece& piece = side.pieces.front();
+        if (piece.split >= 0) continue;
+        const BoundaryEdge& edge = face.loops[piece.loop].edges[piece.edge];
+        if (curve_type(edge.curve) != CurveType::Circle) continue;
+        const double from = side.pieces.front().t_from, to = side.pieces.back().t_to;
+        if (std::abs(std::abs(to - from) - std::abs(edge.t_end - edge.t_start)) > 1e-9) continue;
+        ++sectors;
+        ASSERT_GE(b.singularity, 0) << name;
+        EXPECT_EQ(d.singularities[b.singularity].k, -1) << name;
+        EXPECT_FALSE(d.singularities[b.singularity].fixed) << name;
+      }
+    }
+    EXPECT_GE(sectors, 3) << name;
+    for (const double size_factor : {0.05, 0.01}) {
+      const std::optional<MeshedFace> m = valid_mesh_of(name, size_factor);
+      if (!m) continue;
+      EXPECT_TRUE(m->quality.irregular_boundary.empty()) << name << " at " << size_factor;
+      EXPECT_GT(m->quality.min_scaled_jacobian, 0.75) << name << " at " << size_factor;
+    }
+  }
+}
+
 // The blocks tile the face: their areas (exact line integrals) add up to the
 // face's, every check a user would make holds, and OCC cuts the face along
 // the splits into valid faces whose areas add up to the face's.

@@ -329,6 +329,13 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
   return typing;
 }
 
+// An interior angle (in quarter turns: 157.5 degrees) over which a convex
+// corner's one element is poor (scaled Jacobian under 0.38), nearer 0 as
+// the elements shrink along a smooth curve: the outline runs nearly straight on.
+constexpr double kFlat = 1.75;
+// Fillet sectors cut off one block at most (each cut is checked again).
+constexpr int kMaxSectorsABlock = 16;
+
 // A boundary piece cut into `parts` equal ranges of its parameter.
 std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
   const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
@@ -2496,6 +2503,9 @@ class Decomposer {
       total += b.area;
       d.blocks.push_back(std::move(b));
     }
+    for (std::size_t b = 0; b < d.blocks.size(); ++b)
+      for (int carved = 0; carved < kMaxSectorsABlock && carve_fillet_sector(d, b); ++carved) {
+      }
     if (!adds_up_to_the_face(total)) {
       std::ostringstream text;
       text << std::setprecision(10) << "decomposition: the blocks' areas add up to " << total << ", the face's is "
@@ -2503,6 +2513,119 @@ class Decomposer {
       throw SelfCheckFailure(text.str());
     }
     return d;
+  }
+
+  // A fixed k = -1 finite contact is a convex corner on its arc where the
+  // outline runs straight on (a fillet's middle): the one element there has
+  // an angle near 180 degrees, nearer as the elements shrink. Where that arc
+  // is one whole boundary edge in a submapped block, turns by 45 to 135
+  // degrees, and the normals at its ends meet near the contact (its centre),
+  // the two radii from there to the arc's ends (a split) cut the arc's sector
+  // off the block as a triangle round the singularity, floating again; the
+  // rest keeps the arc's turning as two convex corners and a reflex one.
+  // Returns whether block b was cut.
+  bool carve_fillet_sector(Decomposition& d, std::size_t b) const {
+    if (d.blocks[b].kind != BlockKind::Submap) return false;
+    const BlockRing ring = ring_of(d.blocks[b]);
+    const std::vector<OutlinePiece>& pieces = ring.pieces;
+    const std::size_t n = pieces.size();
+    const std::vector<double> angles = interior_angles(pieces, ring.start_type, tol_);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto on_edge = [&](std::size_t k) {
+        return pieces[k].split < 0 && pieces[k].loop >= 0 && pieces[k].loop == pieces[i].loop &&
+               pieces[k].edge == pieces[i].edge;
+      };
+      if (ring.start_type[i] != 1 || angles[i] <= kFlat || !on_edge((i + n - 1) % n)) continue;
+      std::size_t first = i, last = i;  // the pieces along the edge, first to last
+      while (on_edge((first + n - 1) % n) && (first + n - 1) % n != i) first = (first + n - 1) % n;
+      while (on_edge((last + 1) % n) && (last + 1) % n != first) last = (last + 1) % n;
+      if ((last + 1) % n == first) continue;  // the whole outline: no rest
+      bool one_corner = ring.start_type[first] == 2 && ring.start_type[(last + 1) % n] == 2;
+      for (std::size_t k = (first + 1) % n; k != (last + 1) % n; k = (k + 1) % n)
+        one_corner = one_corner && (k == i || ring.start_type[k] == 2);
+      const BoundaryEdge& edge = face_.loops[pieces[i].loop].edges[pieces[i].edge];
+      const double t_a = pieces[first].t_from, t_b = pieces[last].t_to;
+      const double span = std::abs(edge.t_end - edge.t_start);
+      const bool whole = std::min(std::abs(t_a - edge.t_start), std::abs(t_a - edge.t_end)) <= 1e-9 * span &&
+                         std::min(std::abs(t_b - edge.t_start), std::abs(t_b - edge.t_end)) <= 1e-9 * span;
+      if (!one_corner || !whole) continue;
+      const double along = t_b > t_a ? 1.0 : -1.0;
+      const Vec2 a = pieces[first].points.front(), c = pieces[last].points.back();
+      const Vec2 ta = normalized(along * edge_point(edge, t_a).d1), tc = normalized(along * edge_point(edge, t_b).d1);
+      const double turn = signed_angle(ta, tc);
+      if (turn < 0.25 * kPi || turn > 0.75 * kPi) continue;
+      // The inward normals' meeting point: a + ra perp(ta) = c + rc perp(tc).
+      const Vec2 na = perp(ta), nc = perp(tc);
+      const double det = cross(nc, na);
+      const double ra = cross(nc, c - a) / det, rc = cross(na, c - a) / det;
+      if (!(ra > 0.0 && rc > 0.0) || std::abs(ra - rc) > 0.25 * std::max(ra, rc)) continue;
+      const Vec2 centre = a + ra * na;
+      int contact = -1;
+      for (std::size_t j = 0; j < d.singularities.size(); ++j) {
+        const DecomposedSingularity& sing = d.singularities[j];
+        if (sing.fixed && sing.k == -1 && distance(sing.p, centre) <= 0.25 * std::min(ra, rc))
+          contact = static_cast<int>(j);
+      }
+      if (contact < 0 || !inside_polygon(d.blocks[b].outline, centre)) continue;
+      const std::vector<Vec2>& outline = d.blocks[b].outline;
+      bool crosses = false;
+      for (std::size_t k = 0; k < outline.size() && !crosses; ++k) {
+        const Vec2 p = outline[k], q = outline[(k + 1) % outline.size()];
+        crosses = segments_cross(a, centre, p, q, 1e-9) || segments_cross(centre, c, p, q, 1e-9);
+      }
+      if (crosses) continue;
+
+      const int split = static_cast<int>(d.splits.size());
+      const auto radius = [&](Vec2 from, Vec2 to, bool reversed) {
+        OutlinePiece piece;
+        piece.split = split;
+        piece.reversed = reversed;
+        piece.points = {from, to};
+        return piece;
+      };
+      BlockRing sector, rest;
+      for (std::size_t k = first;; k = (k + 1) % n) {
+        sector.pieces.push_back(pieces[k]);
+        sector.start_type.push_back(k == first ? 1 : 2);
+        if (k == last) break;
+      }
+      sector.pieces.push_back(radius(c, centre, true));
+      sector.start_type.push_back(1);
+      sector.pieces.push_back(radius(centre, a, true));
+      sector.start_type.push_back(1);
+      for (std::size_t k = (last + 1) % n; k != first; k = (k + 1) % n) {
+        rest.pieces.push_back(pieces[k]);
+        rest.start_type.push_back(k == (last + 1) % n ? 1 : ring.start_type[k]);
+      }
+      rest.pieces.push_back(radius(a, centre, false));
+      rest.start_type.push_back(1);
+      rest.pieces.push_back(radius(centre, c, false));
+      rest.start_type.push_back(3);
+
+      Block triangle;
+      set_outline(triangle, sector, tol_);
+      triangle.kind = BlockKind::Polygon;
+      triangle.area = ring_area(sector);
+      const std::optional<Vec2> middle = centroid_inside(triangle.outline);
+      Block cut = d.blocks[b];
+      set_outline(cut, rest, tol_);
+      cut.area -= triangle.area;
+      cut.facing.clear();
+      cut.facing_outside.clear();
+      if (!middle || !(triangle.area > 0.0) || !(cut.area > 0.0) ||
+          !make_submappable(face_, cut, tol_, options_.submap_corners_follow_turning))
+        continue;
+      find_facing_sides(cut);
+      triangle.singularity = contact;
+      d.singularities[contact].p = *middle;
+      d.singularities[contact].fixed = false;
+      d.splits.push_back({{a, centre, c}, SplitReason::Resolve});
+      d.blocks[b] = std::move(cut);
+      d.blocks.push_back(std::move(triangle));
+      d.notes.push_back("a k = -1 fixed on its arc got the arc's sector as its own triangle");
+      return true;
+    }
+    return false;
   }
 
   // An outline's centroid, if it lies inside the outline.
@@ -2535,10 +2658,8 @@ class Decomposer {
   }
 
   // Whether a block has a convex corner where its outline runs nearly
-  // straight on (interior angle over 157.5 degrees: its element's scaled
-  // Jacobian under 0.38, nearer 0 as elements shrink along a smooth curve).
+  // straight on (interior angle over kFlat).
   bool has_flat_convex_corner(const Block& b) const {
-    constexpr double kFlat = 1.75;
     const auto [pieces, types] = typed_pieces(b);
     const std::vector<double> angles = interior_angles(pieces, types, tol_);
     for (std::size_t i = 0; i < pieces.size(); ++i)
@@ -2733,15 +2854,22 @@ class Decomposer {
     const BlockRing flat = flatten(o, true);
     Block b;
     set_outline(b, flat, tol_);
-    const std::size_t count = flat.pieces.size();
-    const Vec2 ref = flat.pieces.empty() ? Vec2{} : flat.pieces.front().points.front();
+    b.area = ring_area(flat);
+    return b;
+  }
+
+  // The area a ring of pieces encloses (exact along boundary edges).
+  double ring_area(const BlockRing& ring) const {
+    const std::size_t count = ring.pieces.size();
+    const Vec2 ref = ring.pieces.empty() ? Vec2{} : ring.pieces.front().points.front();
+    double area = 0.0;
     for (std::size_t i = 0; i < count; ++i) {
       // Consecutive pieces meet to the sliver length, not exactly: the gap's chord counts too.
-      const OutlinePiece& piece = flat.pieces[i];
-      const Vec2 previous_end = flat.pieces[(i + count - 1) % count].points.back();
-      b.area += 0.5 * cross(previous_end - ref, piece.points.front() - previous_end) + piece_area(piece, ref);
+      const OutlinePiece& piece = ring.pieces[i];
+      const Vec2 previous_end = ring.pieces[(i + count - 1) % count].points.back();
+      area += 0.5 * cross(previous_end - ref, piece.points.front() - previous_end) + piece_area(piece, ref);
     }
-    return b;
+    return area;
   }
 
   const FaceModel& face_;
