@@ -2503,9 +2503,10 @@ class Decomposer {
       total += b.area;
       d.blocks.push_back(std::move(b));
     }
-    for (std::size_t b = 0; b < d.blocks.size(); ++b)
-      for (int carved = 0; carved < kMaxSectorsABlock && carve_fillet_sector(d, b); ++carved) {
-      }
+    for (std::size_t b = 0; b < d.blocks.size(); ++b) {
+      int carved = 0;
+      while (carved < kMaxSectorsABlock && carve_fillet_sector(d, b)) ++carved;
+    }
     if (!adds_up_to_the_face(total)) {
       std::ostringstream text;
       text << std::setprecision(10) << "decomposition: the blocks' areas add up to " << total << ", the face's is "
