@@ -146,6 +146,16 @@ std::optional<MeshedFace> valid_mesh_of(const std::string& name, double size_fac
   }
 }
 
+// The face's decomposition, with the tests' decomposition checks.
+Decomposition checked_decomposition(const FaceModel& face) {
+  const MedialAxis axis = compute_medial_axis(face);
+  const MeshFlow flow = compute_mesh_flow(face, axis);
+  Decomposition d = decompose(face, axis, flow, {});
+  const auto problems = test::decomposition_problems(face, flow, d);
+  EXPECT_TRUE(problems.empty()) << face.name << ": " << ::testing::PrintToString(problems);
+  return d;
+}
+
 double area_of(const TopoDS_Face& face) {
   GProp_GProps props;
   BRepGProp::SurfaceProperties(face, props, 1e-12);
@@ -693,12 +703,7 @@ TEST(FuzzFaces, LessMergingWhereAMergedBlockCannotBeMeshed) {
 // caught cascade_33_391). Such a polygon's singularity is now fixed instead.
 TEST(FuzzFaces, APolygonBlockNeverWrapsRoundAHole) {
   for (const char* name : {"cascade_12_40", "cascade_2_381", "cascade_33_391"}) {
-    const FaceModel face = test::data_face(std::string("fuzz/") + name);
-    const MedialAxis axis = compute_medial_axis(face);
-    const MeshFlow flow = compute_mesh_flow(face, axis);
-    const Decomposition d = decompose(face, axis, flow, {});
-    const auto problems = test::decomposition_problems(face, flow, d);
-    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+    checked_decomposition(test::data_face(std::string("fuzz/") + name));
     const std::optional<MeshedFace> m = valid_mesh_of(name);
     if (!m) continue;
     EXPECT_TRUE(m->blocks.notes.empty()) << name << ": " << ::testing::PrintToString(m->blocks.notes);
@@ -734,11 +739,7 @@ TEST(FuzzFaces, BlocksOfTwoOrThreeCornersArePolygonsNotSubmapsWithCornersOnACurv
   for (const auto& [name, least] : std::vector<std::pair<std::string, double>>{
            {"bspline_1_2", 0.7}, {"bspline_1_1917", 0.7}, {"bspline_2_792", 0.7}, {"bspline_26_197", 0.45}}) {
     const FaceModel face = test::data_face("fuzz/" + name);
-    const MedialAxis axis = compute_medial_axis(face);
-    const MeshFlow flow = compute_mesh_flow(face, axis);
-    const Decomposition d = decompose(face, axis, flow, {});
-    const auto problems = test::decomposition_problems(face, flow, d);
-    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+    const Decomposition d = checked_decomposition(face);
     int polygons = 0;
     for (const Block& b : d.blocks) {
       // (bspline_26_197 keeps one such corner in a submap with a reflex corner.)
@@ -774,11 +775,7 @@ TEST(FuzzFaces, BlocksOfTwoOrThreeCornersArePolygonsNotSubmapsWithCornersOnACurv
 TEST(FuzzFaces, AFilletsFixedSingularityGetsTheArcsSectorAsItsTriangle) {
   for (const char* name : {"filleted_1_1490", "filleted_1_1980", "filleted_1_910", "filleted_6_915"}) {
     const FaceModel face = test::data_face(std::string("fuzz/") + name);
-    const MedialAxis axis = compute_medial_axis(face);
-    const MeshFlow flow = compute_mesh_flow(face, axis);
-    const Decomposition d = decompose(face, axis, flow, {});
-    const auto problems = test::decomposition_problems(face, flow, d);
-    EXPECT_TRUE(problems.empty()) << ::testing::PrintToString(problems);
+    const Decomposition d = checked_decomposition(face);
     int sectors = 0;  // triangles whose curved side is one whole circle edge
     for (const Block& b : d.blocks) {
       if (b.kind != BlockKind::Polygon || b.corners.size() != 3) continue;
