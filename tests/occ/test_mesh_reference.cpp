@@ -134,6 +134,27 @@ TEST(MeshReference, SubmapLinesDoNotCrowdThroughANarrowGapWhenFine) {
   EXPECT_GT(m.quality.min_scaled_jacobian, 0.25);
 }
 
+// trimesh_featuretype_50 at a fifth and a tenth of the default size: its
+// bottom fillet's k = -1, fixed on the arc, was a convex corner in the
+// fillet's middle (one element of nearly 180 degrees: 0.26 and 0.14, where
+// Gmsh's Frontal-Delaunay with Blossom gets 0.67 and 0.68), and a block of
+// three corners was submapped with a fourth on a smooth curve. The fillet's
+// sector is now a triangle round that singularity, the block a triangle:
+// every boundary node has the elements its angle asks, and the elements
+// stay good as they shrink.
+TEST(MeshReference, FilletsAndThreeCorneredBlocksHoldTheirQualityWhenFine) {
+  const std::string path = test::shared_dir() + "/realcad/faces/trimesh_featuretype_50.brep";
+  const FaceModel face = read_face_models(path, {}).front();
+  for (const double size_factor : {0.01, 0.005}) {
+    PipelineOptions options;
+    options.meshing.size = size_factor * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty()) << size_factor;
+    EXPECT_TRUE(m.quality.irregular_boundary.empty()) << size_factor;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.75) << size_factor;
+  }
+}
+
 // A "6" engraved on an SMD component (FreeCAD's Idf library, 0603_SMD.stp
 // face 43 and 1206_SMD.stp face 77): a ring with a tail whose inner side
 // meets the ring at a reflex cusp. No singularity: one submapped block, cut
