@@ -91,6 +91,34 @@ TEST(Meshing, KinksTakenAsSmoothBecomeCornersWhereTheMedialAxisFails) {
   EXPECT_EQ(plain.face.corners.size(), 4u);
 }
 
+// Census faces 919 and 3927: curved triangles, one tip sharp, one side an arc
+// turning by about 100 degrees, no singularity. Submapped, they needed a
+// fourth corner on the arc, its element near 180 degrees (0.14 and 0.12, the
+// census's worst). Now triangles round a k = -1 of their own: 0.58 and 0.37
+// (the sharp tip's element).
+TEST(Meshing, CurvedTrianglesAreTrianglesNotSubmapsWithACornerOnTheirArc) {
+  std::mt19937 rng(20261123);
+  std::vector<std::pair<int, FaceModel>> faces;
+  for (int number = 0; number <= 3927; ++number) {
+    try {
+      FaceModel face = test::random_meshing_face(rng, number);
+      if (number == 919 || number == 3927) faces.emplace_back(number, std::move(face));
+    } catch (const InputError&) {
+    }
+  }
+  ASSERT_EQ(faces.size(), 2u);
+  for (const auto& [number, face] : faces) {
+    PipelineOptions options;
+    options.meshing.size = test::random_meshing_size(face, number);
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty()) << face.name;
+    ASSERT_EQ(m.decomposition.blocks.size(), 1u) << face.name;
+    EXPECT_EQ(m.decomposition.blocks.front().kind, BlockKind::Polygon) << face.name;
+    EXPECT_EQ(m.decomposition.blocks.front().corners.size(), 3u) << face.name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.3) << face.name << ": " << m.quality.min_scaled_jacobian;
+  }
+}
+
 // Census face 1416: a ring round a small hole, slit from the hole through a
 // fixed singularity to the outline. Its corner-rule typing leaves the hole's
 // side far off its logical direction, yet its lattice holds; typed again

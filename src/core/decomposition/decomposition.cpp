@@ -2681,7 +2681,8 @@ class Decomposer {
   bool flat_cornered_to_polygon(Block& b, Decomposition& d) const {
     // The corners are the piece starts sharper than kSharp (135 degrees); no
     // other may turn in by more than kReflex (198 degrees), nor a side turn
-    // along it by more than a quarter turn (a triangle's) or a half turn (a D's).
+    // along it by more than 135 degrees (a triangle's; a quarter turn kept
+    // a census face's with a 100-degree arc a submap) or a half turn (a D's).
     constexpr double kSharp = 1.5, kReflex = 2.2;
     const auto [pieces, types] = typed_pieces(b);
     const std::vector<double> angles = interior_angles(pieces, types, tol_);
@@ -2692,7 +2693,7 @@ class Decomposer {
     }
     const int m = static_cast<int>(sharp.size());
     if (m != 2 && m != 3) return false;
-    const double side_turning = m == 3 ? 1.0 : 2.0;
+    const double side_turning = m == 3 ? 1.5 : 2.0;
     const std::optional<Vec2> centroid = centroid_inside(b.outline);
     if (!centroid) return false;
     std::vector<BlockCorner> corners;
