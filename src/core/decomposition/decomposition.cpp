@@ -397,14 +397,11 @@ TypedPieces cut_pieces(const FaceModel& face, const TypedPieces& outline, Parts 
 // else thirds. Cuts are kept where the typing puts a corner. Returns false
 // when no typing submaps.
 bool make_submappable(const FaceModel& face, Block& b, double tol, bool follow_turning) {
+  BlockRing ring = ring_of(b);
   TypedPieces whole;
-  for (std::size_t s = 0; s < b.sides.size(); ++s) {
-    for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
-      whole.pieces.push_back(b.sides[s].pieces[k]);
-      whole.types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
-      whole.cut.push_back(false);
-    }
-  }
+  whole.pieces = std::move(ring.pieces);
+  whole.types = std::move(ring.start_type);
+  whole.cut.assign(whole.pieces.size(), false);
   int total = 0;
   for (const int type : whole.types) total += 2 - type;
   if (total == 4 && submappable(whole.types, twin_splits(whole.pieces)) &&
@@ -2645,26 +2642,13 @@ class Decomposer {
     return centroid;
   }
 
-  // A block's outline pieces, and at each piece start its corner's type (2 where none).
-  static std::pair<std::vector<OutlinePiece>, std::vector<int>> typed_pieces(const Block& b) {
-    std::vector<OutlinePiece> pieces;
-    std::vector<int> types;
-    for (std::size_t s = 0; s < b.sides.size(); ++s) {
-      for (std::size_t k = 0; k < b.sides[s].pieces.size(); ++k) {
-        pieces.push_back(b.sides[s].pieces[k]);
-        types.push_back(k == 0 && s < b.corners.size() ? b.corners[s].type : 2);
-      }
-    }
-    return {pieces, types};
-  }
-
   // Whether a block has a convex corner where its outline runs nearly
   // straight on (interior angle over kFlat).
   bool has_flat_convex_corner(const Block& b) const {
-    const auto [pieces, types] = typed_pieces(b);
-    const std::vector<double> angles = interior_angles(pieces, types, tol_);
-    for (std::size_t i = 0; i < pieces.size(); ++i)
-      if (types[i] == 1 && angles[i] > kFlat) return true;
+    const BlockRing ring = ring_of(b);
+    const std::vector<double> angles = interior_angles(ring.pieces, ring.start_type, tol_);
+    for (std::size_t i = 0; i < ring.pieces.size(); ++i)
+      if (ring.start_type[i] == 1 && angles[i] > kFlat) return true;
     return false;
   }
 
@@ -2684,8 +2668,9 @@ class Decomposer {
     // along it by more than 135 degrees (a triangle's; a quarter turn kept
     // a census face's with a 100-degree arc a submap) or a half turn (a D's).
     constexpr double kSharp = 1.5, kReflex = 2.2;
-    const auto [pieces, types] = typed_pieces(b);
-    const std::vector<double> angles = interior_angles(pieces, types, tol_);
+    const BlockRing ring = ring_of(b);
+    const std::vector<OutlinePiece>& pieces = ring.pieces;
+    const std::vector<double> angles = interior_angles(pieces, ring.start_type, tol_);
     std::vector<std::size_t> sharp;
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       if (angles[i] <= kSharp) sharp.push_back(i);
