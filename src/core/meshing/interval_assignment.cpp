@@ -24,6 +24,8 @@ namespace mm {
 namespace {
 
 constexpr double kUnbounded = std::numeric_limits<double>::max();
+// One lattice step in each logical direction (0 east, 1 north, 2 west, 3 south).
+constexpr int kStepX[4] = {1, 0, -1, 0}, kStepY[4] = {0, 1, 0, -1};
 constexpr double kTimeLimitSeconds = 10.0;
 // CBC's branch and bound without CbcMain1's set-up: tried first on problems
 // of a face or two (a few hundred rows), where it is proven optimal within
@@ -613,15 +615,14 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
         // each side starts is kept dense over the count columns (the sides
         // use no other): a map per side made these rows cost more than
         // solving them on blocks of a hundred sides.
-        const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
         const std::size_t counts = built.count_columns.size();
         using Dense = std::vector<double>;
         std::vector<Dense> x(sides.size(), Dense(counts, 0.0)), y = x;  // where each side starts
         for (size_t i = 1; i < sides.size(); ++i) {
           x[i] = x[i - 1], y[i] = y[i - 1];
           for (int s : block.side_segments[i - 1]) {
-            x[i][s] += step_x[dirs[i - 1]];
-            y[i][s] += step_y[dirs[i - 1]];
+            x[i][s] += kStepX[dirs[i - 1]];
+            y[i][s] += kStepY[dirs[i - 1]];
           }
         }
         // Dense entry s is segment s, whose count is column count_columns[s].
@@ -642,7 +643,7 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
         for (const auto& [s, t, normal, crowd, goal] : apart) {
           Dense dense(counts);
           for (std::size_t k = 0; k < counts; ++k)
-            dense[k] = (x[t][k] - x[s][k]) * step_x[normal] + (y[t][k] - y[s][k]) * step_y[normal];
+            dense[k] = (x[t][k] - x[s][k]) * kStepX[normal] + (y[t][k] - y[s][k]) * kStepY[normal];
           const LinearExpr across = sparse(dense);
           LinearExpr gap = across;
           gap[model.add_column(0.0, kUnbounded, 0.0, false)] -= 1.0;   // surplus
@@ -657,8 +658,8 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
         const auto place = [&](size_t side, size_t upto) {  // after the first `upto` segments of the side
           Dense px = x[side], py = y[side];
           for (size_t k = 0; k < upto; ++k) {
-            px[block.side_segments[side][k]] += step_x[dirs[side]];
-            py[block.side_segments[side][k]] += step_y[dirs[side]];
+            px[block.side_segments[side][k]] += kStepX[dirs[side]];
+            py[block.side_segments[side][k]] += kStepY[dirs[side]];
           }
           return std::make_pair(px, py);
         };
@@ -948,7 +949,6 @@ constexpr int kCrowdingRounds = 3;
 // for the given counts than crowding_cap of their goal.
 Crowded crowded_pairs(const IntervalProblem& problem, const std::vector<int>& counts) {
   Crowded crowded;
-  const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
   for (size_t b = 0; b < problem.blocks.size(); ++b) {
     const BlockShape& block = problem.blocks[b];
     if (block.kind != BlockTemplate::Submap || block.facing_goals.empty()) continue;
@@ -957,13 +957,13 @@ Crowded crowded_pairs(const IntervalProblem& problem, const std::vector<int>& co
     for (size_t i = 1; i < block.side_segments.size(); ++i) {
       long n = 0;
       for (int seg : block.side_segments[i - 1]) n += counts[seg];
-      x[i] = x[i - 1] + n * step_x[dirs[i - 1]];
-      y[i] = y[i - 1] + n * step_y[dirs[i - 1]];
+      x[i] = x[i - 1] + n * kStepX[dirs[i - 1]];
+      y[i] = y[i - 1] + n * kStepY[dirs[i - 1]];
     }
     for (size_t i = 0; i < block.facing_goals.size(); ++i) {
       const auto [s, t] = block.facing[i];
       const int normal = (dirs[s] + 1) % 4;
-      const long across = (x[t] - x[s]) * step_x[normal] + (y[t] - y[s]) * step_y[normal];
+      const long across = (x[t] - x[s]) * kStepX[normal] + (y[t] - y[s]) * kStepY[normal];
       if (block.facing_goals[i] > 0.0 && across > crowding_cap(block.facing_goals[i])) crowded.insert({b, i});
     }
   }
@@ -986,13 +986,12 @@ std::vector<FoldedSides> folded_sides(const BlockShape& block, const std::vector
     if (turning == -2) pairs.push_back({s, t, true});
     if (turning == 6) pairs.push_back({t, s, true});
   };
-  const int step_x[4] = {1, 0, -1, 0}, step_y[4] = {0, 1, 0, -1};
   std::map<std::pair<int, int>, int> side_at;  // lattice point -> the side whose run reached it
   int x = 0, y = 0;
   for (int i = 0; i < sides; ++i) {
     int n = 0;
     for (const int seg : block.side_segments[i]) n += counts[seg];
-    for (int k = 0; k < n; ++k, x += step_x[dirs[i]], y += step_y[dirs[i]]) {
+    for (int k = 0; k < n; ++k, x += kStepX[dirs[i]], y += kStepY[dirs[i]]) {
       const auto [it, fresh] = side_at.emplace(std::make_pair(x, y), i);
       if (fresh) continue;
       const int other = it->second;
