@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -127,6 +128,26 @@ inline FaceModel random_meshing_face(std::mt19937& rng, int number) {
 }
 inline double random_meshing_size(const FaceModel& face, int number) {
   return (number % 2 ? 0.03 : 0.08) * face.size;
+}
+
+// The mesh census's generator seed (tests/core/mesh_census.cpp).
+constexpr unsigned kCensusSeed = 20261123;
+
+// The census's faces of the given numbers, with their numbers, in order: the
+// generator run from its seed up to the largest (faces it refuses left out).
+inline std::vector<std::pair<int, FaceModel>> census_faces(const std::vector<int>& numbers) {
+  std::mt19937 rng(kCensusSeed);
+  const int last = numbers.empty() ? -1 : *std::max_element(numbers.begin(), numbers.end());
+  std::vector<std::pair<int, FaceModel>> faces;
+  for (int number = 0; number <= last; ++number) {
+    try {
+      FaceModel face = random_meshing_face(rng, number);
+      if (std::find(numbers.begin(), numbers.end(), number) != numbers.end())
+        faces.emplace_back(number, std::move(face));
+    } catch (const InputError&) {
+    }
+  }
+  return faces;
 }
 
 }  // namespace mm::test

@@ -183,15 +183,9 @@ TEST(MedialAxis, PropertiesHoldOnAThousandRandomFaces) {
 // it with a point 0.0019 off its radius); finer chords are now tried for a
 // wrong topology as for an inexact point, and they get it right.
 TEST(MedialAxis, WrongTopologyFromCoarseChordsIsBuiltAgainFiner) {
-  std::mt19937 rng(20261123);  // the census's generator, face by face up to 1378
-  FaceModel face;
-  for (int number = 0; number <= 1378; ++number) {
-    try {
-      face = test::random_meshing_face(rng, number);
-    } catch (const InputError&) {
-      continue;
-    }
-  }
+  const std::vector<std::pair<int, FaceModel>> faces = test::census_faces({1378});
+  ASSERT_EQ(faces.size(), 1u);
+  const FaceModel& face = faces.front().second;
   ASSERT_EQ(face.name, "random face 1378");
   const MedialAxis axis = compute_medial_axis(face);
   EXPECT_TRUE(test::medial_axis_is_valid(face, axis, 1e-6));

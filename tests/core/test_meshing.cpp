@@ -13,7 +13,7 @@ namespace mm {
 namespace {
 
 TEST(Meshing, RandomFacesMeshValidlyOrSayWhyNot) {
-  std::mt19937 rng(20261123);
+  std::mt19937 rng(test::kCensusSeed);
   int meshed = 0, errors = 0;
   std::vector<std::string> silent_failures, error_messages;
   for (int number = 0; meshed + errors < 300; ++number) {
@@ -58,15 +58,7 @@ TEST(Meshing, RandomFacesMeshValidlyOrSayWhyNot) {
 // many or a point off its radius. The medial stage then takes the kinks as
 // corners (each gets its flare) and says so; the mesh follows that face.
 TEST(Meshing, KinksTakenAsSmoothBecomeCornersWhereTheMedialAxisFails) {
-  std::mt19937 rng(20261123);
-  std::vector<std::pair<int, FaceModel>> faces;
-  for (int number = 0; number <= 759; ++number) {
-    try {
-      FaceModel face = test::random_meshing_face(rng, number);
-      if (number == 315 || number == 706 || number == 759) faces.emplace_back(number, std::move(face));
-    } catch (const InputError&) {
-    }
-  }
+  const std::vector<std::pair<int, FaceModel>> faces = test::census_faces({315, 706, 759});
   ASSERT_EQ(faces.size(), 3u);
   for (const auto& [number, face] : faces) {
     EXPECT_THROW(compute_medial_axis(face), SelfCheckError) << face.name;
@@ -97,15 +89,7 @@ TEST(Meshing, KinksTakenAsSmoothBecomeCornersWhereTheMedialAxisFails) {
 // census's worst). Now triangles round a k = -1 of their own: 0.58 and 0.37
 // (the sharp tip's element).
 TEST(Meshing, CurvedTrianglesAreTrianglesNotSubmapsWithACornerOnTheirArc) {
-  std::mt19937 rng(20261123);
-  std::vector<std::pair<int, FaceModel>> faces;
-  for (int number = 0; number <= 3927; ++number) {
-    try {
-      FaceModel face = test::random_meshing_face(rng, number);
-      if (number == 919 || number == 3927) faces.emplace_back(number, std::move(face));
-    } catch (const InputError&) {
-    }
-  }
+  const std::vector<std::pair<int, FaceModel>> faces = test::census_faces({919, 3927});
   ASSERT_EQ(faces.size(), 2u);
   for (const auto& [number, face] : faces) {
     PipelineOptions options;
@@ -125,14 +109,9 @@ TEST(Meshing, CurvedTrianglesAreTrianglesNotSubmapsWithACornerOnTheirArc) {
 // following the turning, the lattice outline meets itself. The pipeline then
 // types it by the corner rule alone, and says so.
 TEST(Meshing, SubmapCornersByTheCornerRuleWhereFollowingTheTurningFails) {
-  std::mt19937 rng(20261123);
-  FaceModel face;
-  for (int number = 0; number <= 1416; ++number) {
-    try {
-      face = test::random_meshing_face(rng, number);
-    } catch (const InputError&) {
-    }
-  }
+  const std::vector<std::pair<int, FaceModel>> faces = test::census_faces({1416});
+  ASSERT_EQ(faces.size(), 1u);
+  const FaceModel& face = faces.front().second;
   ASSERT_EQ(face.name, "random face 1416");
   PipelineOptions options;
   options.meshing.size = test::random_meshing_size(face, 1416);
