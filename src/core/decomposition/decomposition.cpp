@@ -2454,7 +2454,6 @@ class Decomposer {
     }
     std::map<int, int> outline_count;
     for (const Outline& o : outlines) ++outline_count[o.component];
-    double total = 0.0;
     for (const Outline& o : outlines) {
       if (outline_count[o.component] != 1) throw SelfCheckFailure("decomposition: a block is not simply connected");
       Block b = make_block(o);
@@ -2497,13 +2496,14 @@ class Decomposer {
         }
       }
       if (b.kind == BlockKind::Submap && b.singularity < 0) find_facing_sides(b);
-      total += b.area;
       d.blocks.push_back(std::move(b));
     }
     for (std::size_t b = 0; b < d.blocks.size(); ++b) {
       int carved = 0;
       while (carved < kMaxSectorsABlock && carve_fillet_sector(d, b)) ++carved;
     }
+    double total = 0.0;  // of the blocks as delivered, fillet sectors cut off
+    for (const Block& b : d.blocks) total += b.area;
     if (!adds_up_to_the_face(total)) {
       std::ostringstream text;
       text << std::setprecision(10) << "decomposition: the blocks' areas add up to " << total << ", the face's is "
@@ -2607,7 +2607,7 @@ class Decomposer {
       const std::optional<Vec2> middle = centroid_inside(triangle.outline);
       Block cut = d.blocks[b];
       set_outline(cut, rest, tol_);
-      cut.area -= triangle.area;
+      cut.area = ring_area(rest);  // its own outline's, so that the areas' sum checks the cut
       cut.facing.clear();
       cut.facing_outside.clear();
       if (!middle || !(triangle.area > 0.0) || !(cut.area > 0.0) ||
