@@ -802,6 +802,27 @@ TEST(FuzzFaces, AFilletsFixedSingularityGetsTheArcsSectorAsItsTriangle) {
   }
 }
 
+// A smooth blob round a hole (fuzz seed 44): the k = -1 at the junction
+// below the hole is fixed, its radii go to each place its edges touch. The
+// boundary between two of those places is an arc round the junction whose
+// branch the medial axis pruned, a sector with no edge in it: no block
+// walked it (the areas fell 3 % short) or the branch beside it was walked
+// into it (its singularity outside its block), and every attempt stopped.
+// Now the block beside that sector takes it in.
+TEST(FuzzFaces, AFixedJunctionsSectorWithNoEdgeBelongsToTheBlockBesideIt) {
+  const FaceModel face = test::data_face("fuzz/bspline_44_152");
+  const Decomposition d = checked_decomposition(face);
+  EXPECT_FALSE(d.fallback);
+  double area = 0.0;
+  for (const Block& b : d.blocks) area += b.area;
+  EXPECT_NEAR(area, face.area, 1e-6 * face.area);
+  for (const double size_factor : {0.05, 0.01}) {
+    const std::optional<MeshedFace> m = valid_mesh_of("bspline_44_152", size_factor);
+    if (!m) continue;
+    EXPECT_GT(m->quality.min_scaled_jacobian, 0.6) << size_factor;
+  }
+}
+
 // The blocks tile the face: their areas (exact line integrals) add up to the
 // face's, every check a user would make holds, and OCC cuts the face along
 // the splits into valid faces whose areas add up to the face's.

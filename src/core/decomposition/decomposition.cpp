@@ -1846,6 +1846,8 @@ class Decomposer {
     const bool low_end = fwd == entering;
     const int cut = low_end ? (i > 0 ? p.cuts[e][i - 1] : -1) : (i < count ? p.cuts[e][i] : -1);
     if (cut >= 0) return side_place(cuts_[cut].point, fwd);
+    if (!closed(e) && vertex_cut(end_vertex(e, low_end)))
+      return junction_place(end_vertex(e, low_end), e, low_end, fwd);
     return end_place(e, low_end, fwd);
   }
 
@@ -1916,8 +1918,8 @@ class Decomposer {
     const bool fwd = !at_start;
     Item it;
     it.split = true;
-    it.a = end_place(e, at_start, fwd);
-    it.b = end_place(e, at_start, !fwd);
+    it.a = junction_place(v, e, at_start, fwd);
+    it.b = junction_place(v, e, at_start, !fwd);
     it.middle = axis_.vertices[v].p;
     it.bend = 2 - away_q(e, at_start);
     it.arm_a = fwd ? split_arm(it.a, f.right_corner, f.right_arm) : split_arm(it.a, f.left_corner, f.left_arm);
@@ -1927,6 +1929,25 @@ class Decomposer {
     it.reversed_a = false;  // radii run from the boundary to the vertex
     it.reversed_b = true;
     return it;
+  }
+
+  // An end's touch at a fixed junction, where its radius goes. Round the
+  // junction each end's left touch is the next end's right one, unless the
+  // medial axis pruned a branch between them (the boundary there an arc at
+  // the junction's radius, its centre the junction): the sector between
+  // the two touches then holds no edge, and no block would walk it. The
+  // later end's right touch takes the earlier one's left, so that its block
+  // runs along that arc.
+  BoundaryPlace junction_place(int v, int e, bool at_start, bool right) const {
+    const BoundaryPlace own = end_place(e, at_start, right);
+    const auto& list = ends_[v];
+    if (right != at_start || list.size() < 2) return own;  // not the side turned away from the earlier end
+    std::size_t k = 0;
+    while (k < list.size() && !(list[k].edge == e && list[k].at_start == at_start)) ++k;
+    if (k == list.size()) return own;
+    const End& before = list[(k + list.size() - 1) % list.size()];
+    const BoundaryPlace left_of_before = end_place(before.edge, before.at_start, !before.at_start);
+    return distance(left_of_before.point, own.point) > tol_ ? left_of_before : own;
   }
 
   int radius_split(int v, Vec2 touch) const {
@@ -2199,7 +2220,7 @@ class Decomposer {
       std::vector<Vec2> touched;
       for (const End& end : ends_[c.vertex]) {
         for (const bool right : {true, false}) {
-          const Vec2 t = end_place(end.edge, end.at_start, right).point;
+          const Vec2 t = junction_place(c.vertex, end.edge, end.at_start, right).point;
           if (std::none_of(touched.begin(), touched.end(), [&](Vec2 q) { return distance(q, t) <= tol_; }))
             touched.push_back(t);
         }
