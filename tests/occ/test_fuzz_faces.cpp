@@ -823,6 +823,22 @@ TEST(FuzzFaces, AFixedJunctionsSectorWithNoEdgeBelongsToTheBlockBesideIt) {
   }
 }
 
+// A blob whose submapped block wraps half round its hole (fuzz seed 45): at
+// a hundredth of the diagonal the block's harmonic layout folds over a band
+// of 214 of its 3 180 quads beside the hole; neither untangling nor any
+// fallback decomposition undid it, and the face stopped. The pipeline's
+// last resort places such a block by Winslow's grid, which follows the
+// hole round.
+TEST(FuzzFaces, ABlockWrappedHalfRoundAHoleIsPlacedByWinslowsGridWhenAllElseFolds) {
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_45_1597", 0.01);
+  ASSERT_TRUE(m);
+  const auto& notes = m->blocks.notes;
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.find("Winslow's grid") != std::string::npos;
+  })) << ::testing::PrintToString(notes);
+  EXPECT_GT(m->quality.min_scaled_jacobian, 0.3);
+}
+
 // The blocks tile the face: their areas (exact line integrals) add up to the
 // face's, every check a user would make holds, and OCC cuts the face along
 // the splits into valid faces whose areas add up to the face's.

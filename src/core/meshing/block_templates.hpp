@@ -20,10 +20,13 @@ struct BlockOutline {
 
 // Appends the block's interior nodes (places with loop = -1) and its quads
 // (counter-clockwise, block_of_quad = block) to the mesh. Interior nodes are
-// placed by transfinite interpolation from the outline nodes. Throws
-// std::runtime_error naming the block when the outline's counts do not
-// satisfy the template's conditions.
-void fill_block(const BlockShape& shape, const std::vector<int>& params, const BlockOutline& outline,
-                int block, QuadMesh& mesh);
+// placed by transfinite interpolation from the outline nodes. With
+// regrid_wide_folds, a submapped block whose harmonic layout folds over a
+// band of it is placed by Winslow's grid instead where that is better (the
+// pipeline's last resort: see MeshingOptions). Throws std::runtime_error
+// naming the block when the outline's counts do not satisfy the template's
+// conditions.
+void fill_block(const BlockShape& shape, const std::vector<int>& params, const BlockOutline& outline, int block,
+                QuadMesh& mesh, bool regrid_wide_folds = false);
 
 }  // namespace mm

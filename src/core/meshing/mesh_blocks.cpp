@@ -328,7 +328,8 @@ class BlockMesher {
     place_segment_nodes(counts_);
     for (std::size_t b = 0; b < d_.blocks.size(); ++b) {
       try {
-        fill_block(shapes_[b], params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_);
+        fill_block(shapes_[b], params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_,
+                   options_.regrid_wide_folds);
       } catch (const std::runtime_error& e) {
         fail(std::string("a block cannot be filled: ") + e.what());
       }

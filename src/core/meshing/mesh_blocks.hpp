@@ -20,6 +20,12 @@ struct MeshingOptions {
   // Untangling reaches 24 rings of elements round a fold, not 8: the
   // pipeline's last resort (a fold in a fine mesh spans more elements).
   bool wide_untangling = false;
+  // A submapped block whose harmonic layout folds over a band of it (a
+  // lattice wrapped half round a hole, the fold widening as the elements
+  // shrink) is placed by Winslow's elliptic grid where that is better: the
+  // pipeline's very last resort, as smoothing untangles most such folds
+  // into better meshes.
+  bool regrid_wide_folds = false;
 };
 
 struct BlockMesh {

@@ -144,11 +144,13 @@ DecompositionKey decomposition_key(const std::vector<const FaceFlow*>& flows, co
 // Runs `attempt` with the options asked for and, while it fails a
 // self-check, with each fallback that decomposes otherwise than those
 // tried (a face with nothing to merge skips the merging fallbacks), and
-// last with the options asked for and untangling that reaches further
+// then with the options asked for and untangling that reaches further
 // (MeshingOptions::wide_untangling: a fold in a fine mesh spans more
-// elements than the default reach; it comes last because where the default
+// elements than the default reach; it comes late because where the default
 // reach fails at the default size a fallback's decomposition meshes better,
-// fuzz aerofoil_12_390 at 0.39 against 0.11 untangled wide). The first
+// fuzz aerofoil_12_390 at 0.39 against 0.11 untangled wide), last with
+// widely folded submapped blocks placed by Winslow's grid as well
+// (MeshingOptions::regrid_wide_folds). The first
 // failure is the one thrown when all fail. Returns the note to hand on
 // (empty if none was needed); the time the failed attempts took is added to
 // `stages` as "failed_attempts".
@@ -180,6 +182,16 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
       attempt(wide);
       return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
              "), and with each fallback; meshed with those settings and untangling reaching further";
+    } catch (const SelfCheckError&) {
+    }
+    add_stage(stages, "failed_attempts", seconds_since(start));
+    start = Clock::now();
+    wide.meshing.regrid_wide_folds = true;
+    try {
+      attempt(wide);
+      return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
+             "), and with each fallback; meshed with those settings, blocks folded widely by their harmonic "
+             "layout placed by Winslow's grid, and untangling reaching further";
     } catch (const SelfCheckError&) {
     }
     add_stage(stages, "failed_attempts", seconds_since(start));
