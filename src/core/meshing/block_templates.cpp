@@ -318,9 +318,12 @@ void place_harmonically(Filler& f, int first_new, std::size_t first_quad) {
 }
 
 // Winslow's sweeps stop once no node moves by more than this fraction of
-// the block's mean side, or after this many.
+// the block's mean side, or after this many. Each move is over-relaxed by
+// kOverRelaxation: on the fuzz blobs this grid is for, 239 sweeps instead
+// of 1 759 (3 180 quads), 1 361 instead of over 8 000 (18 088 quads).
 constexpr double kWinslowTolerance = 1e-4;
-constexpr int kWinslowSweeps = 1000;
+constexpr int kWinslowSweeps = 4000;
+constexpr double kOverRelaxation = 1.8;
 // A harmonic map folded over at least this many of a submapped block's
 // quads, and this share of them, is a band across the block, not a few
 // elements at a corner: 65 to 1 544 quads (5 to 8 %) on blobs whose
@@ -332,10 +335,10 @@ constexpr double kWideFoldShare = 0.02;
 // Winslow's elliptic grid generation on a submapped block's lattice: every
 // interior node solves the inverted Laplace equations (the logical
 // coordinates harmonic over the block, not the places harmonic over the
-// lattice), by Gauss-Seidel sweeps from the nodes' current places. Where
-// the outline bends far inwards (a side wrapped half round a hole) the
-// harmonic map pulls rows of nodes across it and folds; Winslow's grid
-// follows the bend. `at(i, j)` is the node at a lattice point; an interior
+// lattice), by over-relaxed Gauss-Seidel sweeps from the nodes' current
+// places. Where the outline bends far inwards (a side wrapped half round a
+// hole) the harmonic map pulls rows of nodes across it and folds;
+// Winslow's grid follows the bend. `at(i, j)` is the node at a lattice point; an interior
 // point has all eight lattice neighbours (its four cells are inside).
 template <class At>
 void place_by_winslow(Filler& f, const At& at, const std::vector<std::array<int, 2>>& interior,
@@ -358,7 +361,7 @@ void place_by_winslow(Filler& f, const At& at, const std::vector<std::array<int,
           (a * (p(1, 0) + p(-1, 0)) + g * (p(0, 1) + p(0, -1)) - (0.5 * b) * cross_term) / (2.0 * (a + g));
       Vec2& node = f.mesh.nodes[at(i, j)];
       moved = std::max(moved, distance(next, node));
-      node = next;
+      node = node + kOverRelaxation * (next - node);
     }
     if (moved < still) break;
   }
