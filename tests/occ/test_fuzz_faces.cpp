@@ -823,20 +823,49 @@ TEST(FuzzFaces, AFixedJunctionsSectorWithNoEdgeBelongsToTheBlockBesideIt) {
   }
 }
 
-// A blob whose submapped block wraps half round its hole (fuzz seed 45): at
-// a hundredth of the diagonal the block's harmonic layout folds over a band
-// of 214 of its 3 180 quads beside the hole; neither untangling nor any
-// fallback decomposition undid it, and the face stopped. The pipeline's
-// last resort places such a block by Winslow's grid, which follows the
-// hole round.
-TEST(FuzzFaces, ABlockWrappedHalfRoundAHoleIsPlacedByWinslowsGridWhenAllElseFolds) {
-  const std::optional<MeshedFace> m = valid_mesh_of("bspline_45_1597", 0.01);
+// Blobs whose submapped block wrapped half round their hole (fuzz seed 45),
+// its side along the hole turning in by about 190 degrees with no corner:
+// at a hundredth of the diagonal the harmonic layout folded over a band of
+// 5 to 8 % of the block beside the hole, and every attempt stopped. Now
+// the block is cut across from the middle of that side, and each half
+// submaps with a side turning half as far. The glyph 6 at 0.005 of its
+// diagonal needed untangling 24 rings wide (min 0.04); now a fallback's
+// blocks mesh it at over 0.3.
+TEST(FuzzFaces, ABlockWrappedHalfRoundAHoleIsCutAcrossFromThatSidesMiddle) {
+  for (const char* name : {"bspline_45_1597"}) {
+    const Decomposition d = checked_decomposition(test::data_face(std::string("fuzz/") + name));
+    EXPECT_TRUE(std::any_of(d.notes.begin(), d.notes.end(), [](const std::string& n) {
+      return n.find("cut across") != std::string::npos;
+    })) << ::testing::PrintToString(d.notes);
+    const std::optional<MeshedFace> m = valid_mesh_of(name, 0.01);
+    ASSERT_TRUE(m);
+    const auto& notes = m->blocks.notes;
+    EXPECT_TRUE(std::none_of(notes.begin(), notes.end(), [](const std::string& n) {
+      return n.find("self-check") != std::string::npos;
+    })) << ::testing::PrintToString(notes);
+    EXPECT_GT(m->quality.min_scaled_jacobian, 0.45);
+  }
+  const FaceModel glyph = test::data_face("glyph6_1206_smd");
+  PipelineOptions options;
+  options.meshing.size = 0.005 * glyph.size;
+  const MeshedFace m = mesh_face(glyph, options);
+  EXPECT_EQ(m.quality.inverted, 0);
+  EXPECT_GT(m.quality.min_scaled_jacobian, 0.3);
+}
+
+// A blob with a long submapped block round its hole (fuzz seed 10) at a
+// tenth of the default size: every attempt but the last folds, the last
+// with the block's harmonic layout folded over a band of it too. Placed by
+// Winslow's grid, which follows the hole round, it meshes (poorly).
+TEST(FuzzFaces, AWidelyFoldedBlockIsPlacedByWinslowsGridWhenAllElseFolds) {
+  const std::optional<MeshedFace> m = valid_mesh_of("bspline_10_342", 0.005);
   ASSERT_TRUE(m);
   const auto& notes = m->blocks.notes;
   EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
     return n.find("Winslow's grid") != std::string::npos;
   })) << ::testing::PrintToString(notes);
-  EXPECT_GT(m->quality.min_scaled_jacobian, 0.3);
+  const FaceModel face = test::data_face("fuzz/bspline_10_342");
+  EXPECT_GT(m->quality.quads, 0.75 * face.area / (0.005 * face.size * 0.005 * face.size));
 }
 
 // The blocks tile the face: their areas (exact line integrals) add up to the

@@ -184,14 +184,15 @@ TEST(MeshReference, GlyphRingWithACuspGetsCornersRoundItsHole) {
   }
 }
 
-// A glyph at a tenth of the default size: its first placement folds over a
-// region wider than untangling's default reach of 8 rings of elements round
-// the fold, with the settings asked for and with every fallback (an
-// inverted element, a self-check failure, until 2026-11-28). The pipeline's
-// last resort reaches 24 rings, and says so. (glyph6_0603_smd at a fifth
-// did so until its submap's lines stopped crowding through one narrows.)
+// A fuzz blob at a tenth of the default size: its first placement folds
+// over a region wider than untangling's default reach of 8 rings of
+// elements round the fold, with the settings asked for and with every
+// fallback. The pipeline's last resort reaches 24 rings, and says so.
+// (glyph6_1206_smd did so until its blocks wrapped half round the glyph's
+// hole were cut across, fifteenth session; glyph6_0603_smd at a fifth
+// until its submap's lines stopped crowding through one narrows.)
 TEST(MeshReference, AFoldInAFineMeshIsUntangledFromFurtherOut) {
-  const FaceModel face = test::data_face("glyph6_1206_smd");
+  const FaceModel face = test::data_face("fuzz/bspline_8_117");
   PipelineOptions options;
   options.meshing.size = 0.005 * face.size;
   const MeshedFace m = mesh_face(face, options);

@@ -333,8 +333,13 @@ std::vector<int> submap_typing(const std::vector<OutlinePiece>& pieces, const st
 // corner's one element is poor (scaled Jacobian under 0.38), nearer 0 as
 // the elements shrink along a smooth curve: the outline runs nearly straight on.
 constexpr double kFlat = 1.75;
-// Fillet sectors cut off one block at most (each cut is checked again).
+// Fillet sectors cut off one block at most (each cut is checked again), and
+// cuts across sides wrapped round a hole.
 constexpr int kMaxSectorsABlock = 16;
+// A side of a submapped block turning in by this many quarter turns or more
+// with no corner wraps the block round a hole or bay (135 degrees).
+constexpr double kWrapped = 1.5;
+constexpr double kRound = 3.5;
 
 // A boundary piece cut into `parts` equal ranges of its parameter.
 std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
@@ -2523,6 +2528,10 @@ class Decomposer {
       int carved = 0;
       while (carved < kMaxSectorsABlock && carve_fillet_sector(d, b)) ++carved;
     }
+    for (std::size_t b = 0; b < d.blocks.size(); ++b) {
+      int cut = 0;
+      while (cut < kMaxSectorsABlock && cut_across_wrapped_side(d, b)) ++cut;
+    }
     double total = 0.0;  // of the blocks as delivered, fillet sectors cut off
     for (const Block& b : d.blocks) total += b.area;
     if (!adds_up_to_the_face(total)) {
@@ -2645,6 +2654,181 @@ class Decomposer {
       return true;
     }
     return false;
+  }
+
+  // A submapped block with a side that runs round a hole (or a deep smooth
+  // bay) turning in by kWrapped or more with no corner on it wraps its
+  // lattice round that side: the elements along it fan, and the harmonic
+  // layout folds beside it as they shrink (fuzz seed 45's blobs at 0.01 of
+  // the diagonal). A cut along the side's normal from its middle to the
+  // boundary across the block parts it into two, each with a right-angled
+  // corner at either end of the cut and a side turning half as far, kept if
+  // both are submappable with no convex corner where the outline runs on.
+  // Returns whether block b was cut.
+  bool cut_across_wrapped_side(Decomposition& d, std::size_t b) const {
+    if (d.blocks[b].kind != BlockKind::Submap || d.blocks[b].singularity >= 0) return false;
+    const BlockRing ring = ring_of(d.blocks[b]);
+    const std::vector<OutlinePiece>& pieces = ring.pieces;
+    const std::size_t n = pieces.size();
+    for (std::size_t first = 0; first < n; ++first) {
+      if (ring.start_type[first] == 2) continue;
+      std::size_t last = first;  // the side: first up to the piece before the next corner
+      while (ring.start_type[(last + 1) % n] == 2 && (last + 1) % n != first) last = (last + 1) % n;
+      double turning = 0.0, length = 0.0;
+      bool boundary = true;
+      for (std::size_t k = first;; k = (k + 1) % n) {
+        boundary = boundary && pieces[k].split < 0 && pieces[k].loop >= 0;
+        turning += piece_quarters(pieces[k], tol_) + (k == first ? 0.0 : 2.0 - interior_quarters_at(pieces, k));
+        length += polyline_length(pieces[k].points);
+        if (k == last) break;
+      }
+      // A side all round a hole (a ring opened by one cut) is the ring's
+      // lattice, not a wrap.
+      if (!boundary || turning > -kWrapped || turning < -kRound) continue;
+      // The side's middle, by length, on its piece's curve.
+      std::size_t at = first;
+      double before = 0.0;
+      while (at != last && before + polyline_length(pieces[at].points) < 0.5 * length) {
+        before += polyline_length(pieces[at].points);
+        at = (at + 1) % n;
+      }
+      const OutlinePiece& side_piece = pieces[at];
+      const double fraction = (0.5 * length - before) / polyline_length(side_piece.points);
+      const double t_h = side_piece.t_from + fraction * (side_piece.t_to - side_piece.t_from);
+      const BoundaryEdge& side_edge = face_.loops[side_piece.loop].edges[side_piece.edge];
+      const CurvePoint on_side = edge_point(side_edge, t_h);
+      const Vec2 h = on_side.p;
+      const Vec2 inward = perp(normalized((side_piece.t_to > side_piece.t_from ? 1.0 : -1.0) * on_side.d1));
+      // The first piece of the outline the normal from h meets.
+      std::size_t hit = n;
+      double reach = std::numeric_limits<double>::infinity();
+      Vec2 o{0, 0};
+      for (std::size_t k = 0; k < n; ++k) {
+        if (k == at) continue;
+        const std::vector<Vec2>& pts = pieces[k].points;
+        for (std::size_t j = 1; j < pts.size(); ++j) {
+          const Vec2 e = pts[j] - pts[j - 1];
+          const double det = cross(inward, e);
+          if (std::abs(det) <= 1e-12 * norm(e)) continue;
+          const double along = cross(pts[j - 1] - h, e) / det, within = cross(pts[j - 1] - h, inward) / det;
+          if (along > tol_ && along < reach && within >= 0.0 && within <= 1.0) {
+            reach = along, hit = k;
+            o = h + along * inward;
+          }
+        }
+      }
+      if (hit == n || pieces[hit].split >= 0 || pieces[hit].loop < 0) continue;
+      const OutlinePiece& far_piece = pieces[hit];
+      const BoundaryEdge& far_edge = face_.loops[far_piece.loop].edges[far_piece.edge];
+      const double t_o = nearest_param(far_edge, far_piece.t_from, far_piece.t_to, o);
+      o = edge_point(far_edge, t_o).p;
+      if (distance(o, far_piece.points.front()) <= 1e3 * tol_ || distance(o, far_piece.points.back()) <= 1e3 * tol_)
+        continue;
+      // Right-angled enough at the far end too, on both sides of the cut.
+      const Vec2 far_tangent =
+          normalized((far_piece.t_to > far_piece.t_from ? 1.0 : -1.0) * edge_point(far_edge, t_o).d1);
+      const double meets = std::abs(signed_angle(far_tangent, normalized(h - o)));
+      if (meets < 0.25 * kPi || meets > 0.75 * kPi) continue;
+
+      const int split = static_cast<int>(d.splits.size());
+      const auto part = [&](const OutlinePiece& piece, double from, double to) {
+        OutlinePiece p = piece;
+        const BoundaryEdge& e = face_.loops[piece.loop].edges[piece.edge];
+        p.t_from = from, p.t_to = to;
+        p.points.clear();
+        constexpr int kSamples = 16;
+        for (int k = 0; k <= kSamples; ++k) p.points.push_back(edge_point(e, from + (to - from) * k / kSamples).p);
+        p.points.front() = from == piece.t_from ? piece.points.front() : p.points.front();
+        p.points.back() = to == piece.t_to ? piece.points.back() : p.points.back();
+        return p;
+      };
+      const auto cut_piece = [&](Vec2 from, Vec2 to, bool reversed) {
+        OutlinePiece piece;
+        piece.split = split;
+        piece.reversed = reversed;
+        piece.points = {from, to};
+        return piece;
+      };
+      // Block one: from h on along the outline to o, back along the cut;
+      // block two: from o on to h, and across.
+      BlockRing one, two;
+      one.pieces.push_back(part(side_piece, t_h, side_piece.t_to));
+      one.start_type.push_back(1);
+      for (std::size_t k = (at + 1) % n; k != hit; k = (k + 1) % n) {
+        one.pieces.push_back(pieces[k]);
+        one.start_type.push_back(ring.start_type[k]);
+      }
+      one.pieces.push_back(part(far_piece, far_piece.t_from, t_o));
+      one.start_type.push_back(ring.start_type[hit]);
+      one.pieces.push_back(cut_piece(o, h, true));
+      one.start_type.push_back(1);
+      two.pieces.push_back(part(far_piece, t_o, far_piece.t_to));
+      two.start_type.push_back(1);
+      for (std::size_t k = (hit + 1) % n; k != at; k = (k + 1) % n) {
+        two.pieces.push_back(pieces[k]);
+        two.start_type.push_back(ring.start_type[k]);
+      }
+      two.pieces.push_back(part(side_piece, side_piece.t_from, t_h));
+      two.start_type.push_back(ring.start_type[at]);
+      two.pieces.push_back(cut_piece(h, o, false));
+      two.start_type.push_back(1);
+
+      std::array<Block, 2> halves{d.blocks[b], d.blocks[b]};
+      bool fine = true;
+      for (int k = 0; k < 2 && fine; ++k) {
+        Block& half = halves[k];
+        const BlockRing& r = k == 0 ? one : two;
+        set_outline(half, r, tol_);
+        half.area = ring_area(r);
+        half.facing.clear();
+        half.facing_outside.clear();
+        fine = half.area > 0.0 && make_submappable(face_, half, tol_, options_.submap_corners_follow_turning) &&
+               !has_flat_convex_corner(half);
+      }
+      if (!fine) continue;
+      for (Block& half : halves) find_facing_sides(half);
+      d.splits.push_back({{h, o}, SplitReason::Resolve});
+      d.blocks[b] = std::move(halves[0]);
+      d.blocks.push_back(std::move(halves[1]));
+      d.notes.push_back("a block whose side ran round a hole or bay was cut across from that side's middle");
+      return true;
+    }
+    return false;
+  }
+
+  // The interior angle (quarter turns) at the start of piece k of a ring
+  // whose pieces meet there with no corner: 2 less the turn between them.
+  double interior_quarters_at(const std::vector<OutlinePiece>& pieces, std::size_t k) const {
+    std::vector<const OutlinePiece*> refs;
+    for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
+    return interior_quarters(refs, k, 2, tol_);
+  }
+
+  static double polyline_length(const std::vector<Vec2>& points) {
+    double length = 0.0;
+    for (std::size_t k = 1; k < points.size(); ++k) length += distance(points[k - 1], points[k]);
+    return length;
+  }
+
+  // The parameter between ta and tb (either order) of the edge's point
+  // nearest p: the nearest of 64 samples, refined by golden section.
+  static double nearest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p) {
+    constexpr int kSamples = 64;
+    const auto gap = [&](double t) { return distance(edge_point(edge, t).p, p); };
+    int best = 0;
+    for (int k = 1; k <= kSamples; ++k)
+      if (gap(ta + (tb - ta) * k / kSamples) < gap(ta + (tb - ta) * best / kSamples)) best = k;
+    double lo = ta + (tb - ta) * std::max(0, best - 1) / kSamples,
+           hi = ta + (tb - ta) * std::min(kSamples, best + 1) / kSamples;
+    const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int k = 0; k < 60; ++k) {
+      const double m1 = hi - ratio * (hi - lo), m2 = lo + ratio * (hi - lo);
+      if (gap(m1) < gap(m2))
+        hi = m2;
+      else
+        lo = m1;
+    }
+    return 0.5 * (lo + hi);
   }
 
   // An outline's centroid, if it lies inside the outline.
