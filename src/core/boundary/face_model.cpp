@@ -299,6 +299,36 @@ CurvePoint edge_point(const BoundaryEdge& edge, double t) {
   return evaluate(edge.curve, t);
 }
 
+std::pair<double, double> closest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p) {
+  constexpr int kSteps = 64;
+  const auto param = [&](int i) { return ta + (tb - ta) * i / kSteps; };
+  const auto gap = [&](double t) { return distance(edge_point(edge, t).p, p); };
+  int best = 0;
+  double best_gap = gap(ta);
+  for (int i = 1; i <= kSteps; ++i) {
+    const double d = gap(param(i));
+    if (d < best_gap) {
+      best = i;
+      best_gap = d;
+    }
+  }
+  double lo = param(std::max(best - 1, 0));
+  double hi = param(std::min(best + 1, kSteps));
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  for (int i = 0; i < 80; ++i) {
+    const double a = hi - golden * (hi - lo);
+    const double b = lo + golden * (hi - lo);
+    if (gap(a) < gap(b)) {
+      hi = b;
+    } else {
+      lo = a;
+    }
+  }
+  const double t = 0.5 * (lo + hi);
+  const double d = gap(t);
+  return d < best_gap ? std::make_pair(t, d) : std::make_pair(param(best), best_gap);
+}
+
 Vec2 edge_tangent(const BoundaryEdge& edge, double t) {
   const double direction = edge.t_end >= edge.t_start ? 1.0 : -1.0;
   const CurvePoint cp = evaluate(edge.curve, t);

@@ -5,6 +5,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boundary/curve.hpp"
@@ -102,6 +103,10 @@ int optimal_corner_type(double angle);
 // Position and unit tangent in the loop's direction of travel.
 CurvePoint edge_point(const BoundaryEdge& edge, double t);
 Vec2 edge_tangent(const BoundaryEdge& edge, double t);
+// The parameter between ta and tb (either order) of the point of the edge
+// closest to p, and the distance: the nearest of 64 samples, refined by
+// golden section between its neighbours.
+std::pair<double, double> closest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p);
 double edge_length(const BoundaryEdge& edge);
 
 // Points along the edge, start and end included, with chordal deviation at

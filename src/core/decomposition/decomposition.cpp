@@ -2604,13 +2604,7 @@ class Decomposer {
       if (crosses) continue;
 
       const int split = static_cast<int>(d.splits.size());
-      const auto radius = [&](Vec2 from, Vec2 to, bool reversed) {
-        OutlinePiece piece;
-        piece.split = split;
-        piece.reversed = reversed;
-        piece.points = {from, to};
-        return piece;
-      };
+      const auto radius = [&](Vec2 from, Vec2 to, bool reversed) { return split_piece(split, from, to, reversed); };
       BlockRing sector, rest;
       for (std::size_t k = first;; k = (k + 1) % n) {
         sector.pieces.push_back(pieces[k]);
@@ -2720,7 +2714,7 @@ class Decomposer {
       if (hit == n || pieces[hit].split >= 0 || pieces[hit].loop < 0) continue;
       const OutlinePiece& far_piece = pieces[hit];
       const BoundaryEdge& far_edge = face_.loops[far_piece.loop].edges[far_piece.edge];
-      const double t_o = nearest_param(far_edge, far_piece.t_from, far_piece.t_to, o);
+      const double t_o = closest_param(far_edge, far_piece.t_from, far_piece.t_to, o).first;
       o = edge_point(far_edge, t_o).p;
       if (distance(o, far_piece.points.front()) <= 1e3 * tol_ || distance(o, far_piece.points.back()) <= 1e3 * tol_)
         continue;
@@ -2742,36 +2736,29 @@ class Decomposer {
         p.points.back() = to == piece.t_to ? piece.points.back() : p.points.back();
         return p;
       };
-      const auto cut_piece = [&](Vec2 from, Vec2 to, bool reversed) {
-        OutlinePiece piece;
-        piece.split = split;
-        piece.reversed = reversed;
-        piece.points = {from, to};
-        return piece;
+      // A half: its first piece (from a new corner at one end of the cut),
+      // the ring's pieces after `after` up to `end`, the piece of `end` up to
+      // the cut, and back across the cut. Block one runs from h round to o,
+      // block two from o round to h.
+      const auto half_ring = [&](OutlinePiece start, std::size_t after, std::size_t end, OutlinePiece last, Vec2 from,
+                                 Vec2 to, bool reversed) {
+        BlockRing r;
+        r.pieces.push_back(std::move(start));
+        r.start_type.push_back(1);
+        for (std::size_t k = (after + 1) % n; k != end; k = (k + 1) % n) {
+          r.pieces.push_back(pieces[k]);
+          r.start_type.push_back(ring.start_type[k]);
+        }
+        r.pieces.push_back(std::move(last));
+        r.start_type.push_back(ring.start_type[end]);
+        r.pieces.push_back(split_piece(split, from, to, reversed));
+        r.start_type.push_back(1);
+        return r;
       };
-      // Block one: from h on along the outline to o, back along the cut;
-      // block two: from o on to h, and across.
-      BlockRing one, two;
-      one.pieces.push_back(part(side_piece, t_h, side_piece.t_to));
-      one.start_type.push_back(1);
-      for (std::size_t k = (at + 1) % n; k != hit; k = (k + 1) % n) {
-        one.pieces.push_back(pieces[k]);
-        one.start_type.push_back(ring.start_type[k]);
-      }
-      one.pieces.push_back(part(far_piece, far_piece.t_from, t_o));
-      one.start_type.push_back(ring.start_type[hit]);
-      one.pieces.push_back(cut_piece(o, h, true));
-      one.start_type.push_back(1);
-      two.pieces.push_back(part(far_piece, t_o, far_piece.t_to));
-      two.start_type.push_back(1);
-      for (std::size_t k = (hit + 1) % n; k != at; k = (k + 1) % n) {
-        two.pieces.push_back(pieces[k]);
-        two.start_type.push_back(ring.start_type[k]);
-      }
-      two.pieces.push_back(part(side_piece, side_piece.t_from, t_h));
-      two.start_type.push_back(ring.start_type[at]);
-      two.pieces.push_back(cut_piece(h, o, false));
-      two.start_type.push_back(1);
+      const BlockRing one = half_ring(part(side_piece, t_h, side_piece.t_to), at, hit,
+                                      part(far_piece, far_piece.t_from, t_o), o, h, true);
+      const BlockRing two = half_ring(part(far_piece, t_o, far_piece.t_to), hit, at,
+                                      part(side_piece, side_piece.t_from, t_h), h, o, false);
 
       std::array<Block, 2> halves{d.blocks[b], d.blocks[b]};
       bool fine = true;
@@ -2810,25 +2797,13 @@ class Decomposer {
     return length;
   }
 
-  // The parameter between ta and tb (either order) of the edge's point
-  // nearest p: the nearest of 64 samples, refined by golden section.
-  static double nearest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p) {
-    constexpr int kSamples = 64;
-    const auto gap = [&](double t) { return distance(edge_point(edge, t).p, p); };
-    int best = 0;
-    for (int k = 1; k <= kSamples; ++k)
-      if (gap(ta + (tb - ta) * k / kSamples) < gap(ta + (tb - ta) * best / kSamples)) best = k;
-    double lo = ta + (tb - ta) * std::max(0, best - 1) / kSamples,
-           hi = ta + (tb - ta) * std::min(kSamples, best + 1) / kSamples;
-    const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-    for (int k = 0; k < 60; ++k) {
-      const double m1 = hi - ratio * (hi - lo), m2 = lo + ratio * (hi - lo);
-      if (gap(m1) < gap(m2))
-        hi = m2;
-      else
-        lo = m1;
-    }
-    return 0.5 * (lo + hi);
+  // A straight piece of a new split, run forwards or backwards.
+  static OutlinePiece split_piece(int split, Vec2 from, Vec2 to, bool reversed) {
+    OutlinePiece piece;
+    piece.split = split;
+    piece.reversed = reversed;
+    piece.points = {from, to};
+    return piece;
   }
 
   // An outline's centroid, if it lies inside the outline.

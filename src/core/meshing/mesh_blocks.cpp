@@ -152,39 +152,6 @@ double middle_param(const BoundaryEdge& edge, double ta, double tb) {
   return 0.5 * (lo + hi);
 }
 
-// The parameter between ta and tb (either order) of the point of the edge
-// closest to p, and the distance: the nearest of 64 samples, refined by
-// golden section between its neighbours.
-std::pair<double, double> closest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p) {
-  constexpr int kSteps = 64;
-  const auto param = [&](int i) { return ta + (tb - ta) * i / kSteps; };
-  const auto gap = [&](double t) { return distance(edge_point(edge, t).p, p); };
-  int best = 0;
-  double best_gap = gap(ta);
-  for (int i = 1; i <= kSteps; ++i) {
-    const double d = gap(param(i));
-    if (d < best_gap) {
-      best = i;
-      best_gap = d;
-    }
-  }
-  double lo = param(std::max(best - 1, 0));
-  double hi = param(std::min(best + 1, kSteps));
-  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
-  for (int i = 0; i < 80; ++i) {
-    const double a = hi - golden * (hi - lo);
-    const double b = lo + golden * (hi - lo);
-    if (gap(a) < gap(b)) {
-      hi = b;
-    } else {
-      lo = a;
-    }
-  }
-  const double t = 0.5 * (lo + hi);
-  const double d = gap(t);
-  return d < best_gap ? std::make_pair(t, d) : std::make_pair(param(best), best_gap);
-}
-
 double quad_area(const QuadMesh& mesh, const std::array<int, 4>& q) {
   double twice = 0.0;
   for (int i = 0; i < 4; ++i) twice += cross(mesh.nodes[q[i]], mesh.nodes[q[(i + 1) % 4]]);
