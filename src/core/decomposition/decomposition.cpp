@@ -337,7 +337,8 @@ constexpr double kFlat = 1.75;
 // cuts across sides wrapped round a hole.
 constexpr int kMaxSectorsABlock = 16;
 // A side of a submapped block turning in by this many quarter turns or more
-// with no corner wraps the block round a hole or bay (135 degrees).
+// with no corner wraps the block round a hole or bay (135 degrees); by
+// kRound or more it goes all round a hole (a ring opened by one cut).
 constexpr double kWrapped = 1.5;
 constexpr double kRound = 3.5;
 
