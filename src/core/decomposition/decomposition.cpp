@@ -341,22 +341,32 @@ constexpr int kMaxSectorsABlock = 16;
 // kRound or more it goes all round a hole (a ring opened by one cut).
 constexpr double kWrapped = 1.5;
 constexpr double kRound = 3.5;
+// Samples along each part of a boundary piece that such a cut ends on.
+constexpr int kCutPieceSamples = 16;
+
+// The part of a boundary piece between parameters `from` and `to`, sampled
+// at `samples` equal steps; where it starts or ends with the piece it keeps
+// the piece's own end point (the outlines meet there exactly).
+OutlinePiece piece_part(const FaceModel& face, const OutlinePiece& piece, double from, double to, int samples) {
+  const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
+  OutlinePiece part = piece;
+  part.t_from = from;
+  part.t_to = to;
+  part.points = {from == piece.t_from ? piece.points.front() : edge_point(e, from).p};
+  for (int k = 1; k < samples; ++k) part.points.push_back(edge_point(e, from + (to - from) * k / samples).p);
+  part.points.push_back(to == piece.t_to ? piece.points.back() : edge_point(e, to).p);
+  return part;
+}
 
 // A boundary piece cut into `parts` equal ranges of its parameter.
 std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
-  const BoundaryEdge& e = face.loops[piece.loop].edges[piece.edge];
   const int samples = std::max(2, static_cast<int>(piece.points.size()) / parts);
   const double span = piece.t_to - piece.t_from;
   std::vector<OutlinePiece> result;
   for (int p = 0; p < parts; ++p) {
-    OutlinePiece part = piece;
-    part.t_from = piece.t_from + span * p / parts;
-    part.t_to = p + 1 == parts ? piece.t_to : piece.t_from + span * (p + 1) / parts;
-    part.points = {p == 0 ? piece.points.front() : edge_point(e, part.t_from).p};
-    for (int k = 1; k < samples; ++k)
-      part.points.push_back(edge_point(e, part.t_from + (part.t_to - part.t_from) * k / samples).p);
-    part.points.push_back(p + 1 == parts ? piece.points.back() : edge_point(e, part.t_to).p);
-    result.push_back(std::move(part));
+    const double from = piece.t_from + span * p / parts;
+    const double to = p + 1 == parts ? piece.t_to : piece.t_from + span * (p + 1) / parts;
+    result.push_back(piece_part(face, piece, from, to, samples));
   }
   return result;
 }
@@ -2665,6 +2675,9 @@ class Decomposer {
     const BlockRing ring = ring_of(d.blocks[b]);
     const std::vector<OutlinePiece>& pieces = ring.pieces;
     const std::size_t n = pieces.size();
+    const std::vector<double> angles = interior_angles(pieces, ring.start_type, tol_);
+    std::vector<double> lengths;
+    for (const OutlinePiece& piece : pieces) lengths.push_back(polyline_length(piece.points));
     for (std::size_t first = 0; first < n; ++first) {
       if (ring.start_type[first] == 2) continue;
       std::size_t last = first;  // the side: first up to the piece before the next corner
@@ -2673,8 +2686,8 @@ class Decomposer {
       bool boundary = true;
       for (std::size_t k = first;; k = (k + 1) % n) {
         boundary = boundary && pieces[k].split < 0 && pieces[k].loop >= 0;
-        turning += piece_quarters(pieces[k], tol_) + (k == first ? 0.0 : 2.0 - interior_quarters_at(pieces, k));
-        length += polyline_length(pieces[k].points);
+        turning += piece_quarters(pieces[k], tol_) + (k == first ? 0.0 : 2.0 - angles[k]);
+        length += lengths[k];
         if (k == last) break;
       }
       // A side all round a hole (a ring opened by one cut) is the ring's
@@ -2683,12 +2696,12 @@ class Decomposer {
       // The side's middle, by length, on its piece's curve.
       std::size_t at = first;
       double before = 0.0;
-      while (at != last && before + polyline_length(pieces[at].points) < 0.5 * length) {
-        before += polyline_length(pieces[at].points);
+      while (at != last && before + lengths[at] < 0.5 * length) {
+        before += lengths[at];
         at = (at + 1) % n;
       }
       const OutlinePiece& side_piece = pieces[at];
-      const double fraction = (0.5 * length - before) / polyline_length(side_piece.points);
+      const double fraction = (0.5 * length - before) / lengths[at];
       const double t_h = side_piece.t_from + fraction * (side_piece.t_to - side_piece.t_from);
       const BoundaryEdge& side_edge = face_.loops[side_piece.loop].edges[side_piece.edge];
       const CurvePoint on_side = edge_point(side_edge, t_h);
@@ -2726,16 +2739,9 @@ class Decomposer {
       if (meets < 0.25 * kPi || meets > 0.75 * kPi) continue;
 
       const int split = static_cast<int>(d.splits.size());
+      // The cut's ends on their pieces' curves, the pieces sampled as a split's run is.
       const auto part = [&](const OutlinePiece& piece, double from, double to) {
-        OutlinePiece p = piece;
-        const BoundaryEdge& e = face_.loops[piece.loop].edges[piece.edge];
-        p.t_from = from, p.t_to = to;
-        p.points.clear();
-        constexpr int kSamples = 16;
-        for (int k = 0; k <= kSamples; ++k) p.points.push_back(edge_point(e, from + (to - from) * k / kSamples).p);
-        p.points.front() = from == piece.t_from ? piece.points.front() : p.points.front();
-        p.points.back() = to == piece.t_to ? piece.points.back() : p.points.back();
-        return p;
+        return piece_part(face_, piece, from, to, kCutPieceSamples);
       };
       // A half: its first piece (from a new corner at one end of the cut),
       // the ring's pieces after `after` up to `end`, the piece of `end` up to
@@ -2782,14 +2788,6 @@ class Decomposer {
       return true;
     }
     return false;
-  }
-
-  // The interior angle (quarter turns) at the start of piece k of a ring
-  // whose pieces meet there with no corner: 2 less the turn between them.
-  double interior_quarters_at(const std::vector<OutlinePiece>& pieces, std::size_t k) const {
-    std::vector<const OutlinePiece*> refs;
-    for (const OutlinePiece& piece : pieces) refs.push_back(&piece);
-    return interior_quarters(refs, k, 2, tol_);
   }
 
   static double polyline_length(const std::vector<Vec2>& points) {
