@@ -14,6 +14,7 @@ packages=(
   freecad xvfb xauth
   librsvg2-bin # rsvg-convert: SVG pictures to PNG
   coinor-libcbc-dev # CBC: the integer program of interval assignment
+  liblbfgs-dev # L-BFGS: smoothing's joint search round the worst elements
   gmsh python3-gmsh libgmsh-dev # the mesher we compare against, and a reader of our .msh
   calculix-ccx # the solver of the end-to-end FEM check
   python3-meshio python3-numpy # an independent reader of our mesh files

@@ -134,6 +134,25 @@ TEST(MeshReference, SubmapLinesDoNotCrowdThroughANarrowGapWhenFine) {
   EXPECT_GT(m.quality.min_scaled_jacobian, 0.25);
 }
 
+// occt_face2_1 at 0.007 of its diagonal and bracket at 0.005: lattices
+// sheared over several rows beside a singularity and a reflex corner. Node
+// by node search stopped at 0.586 and 0.614 (Gmsh's Frontal-Delaunay with
+// Blossom gets 0.652 and 0.692), since each node's best move spoiled a
+// neighbour's quad; moving the nodes round the worst quads together (L-BFGS
+// on a soft maximum of 1 / scaled Jacobian) spreads the shear.
+TEST(MeshReference, ALatticeShearedOverSeveralRowsIsSpreadByMovingItsNodesTogether) {
+  const std::pair<const char*, double> cases[] = {{"/realcad/faces/occt_face2_1.brep", 0.007},
+                                                  {"/geometry/bracket.brep", 0.005}};
+  for (const auto& [name, size_factor] : cases) {
+    const FaceModel face = read_face_models(test::shared_dir() + name, {}).front();
+    PipelineOptions options;
+    options.meshing.size = size_factor * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty()) << name;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.68) << name;
+  }
+}
+
 // trimesh_featuretype_50 at a fifth and a tenth of the default size: its
 // bottom fillet's k = -1, fixed on the arc, was a convex corner in the
 // fillet's middle (one element of nearly 180 degrees: 0.26 and 0.14, where

@@ -1,5 +1,7 @@
 #include "meshing/smoothing.hpp"
 
+#include <lbfgs.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -39,6 +41,30 @@ constexpr double kShortestChord = 0.25;
 // blind to a side shrinking to nothing between two good corners, and a thin
 // strip's node otherwise slides onto its neighbour.
 constexpr double kShortestSide = 0.01;
+// The joint search round the worst quads (spread_worst): only when the
+// minimum is below kSpreadBelow (a poor element: Gmsh's minimum on the
+// shared faces is at most 0.72); on the kSpreadSeeds worst quads within
+// kSpreadBand of it and kSpreadRings rings round them; the soft maximum of
+// 1 / scaled Jacobian over their corners with this power (large: near the
+// maximum itself, smooth enough for quasi-Newton steps); at most this many
+// L-BFGS steps.
+constexpr double kSpreadBelow = 0.75;
+constexpr double kSpreadBand = 0.1;
+constexpr std::size_t kSpreadSeeds = 32;
+constexpr int kSpreadRings = 8;
+constexpr int kSpreadPower = 16;  // a power of two: squarings
+constexpr int kSpreadSteps = 200;
+// The search stops once its least corner has not risen by kSpreadGain in
+// kSpreadPatience steps.
+constexpr double kSpreadGain = 1e-3;
+constexpr int kSpreadPatience = 10;
+// Halvings towards where a boundary node was when it breaks a bound.
+constexpr int kSlideBisections = 8;
+// Halvings of a step before the search gives up (it then has met a bound or
+// its quasi-Newton model no longer fits).
+constexpr int kSpreadLineSearch = 12;
+// A corner below this scaled Jacobian during the search is out of bounds.
+constexpr double kSpreadFloor = 1e-3;
 
 // Signed quality of corner i of a quad: the scaled Jacobian, or the
 // unnormalised corner area (cross product) when untangling.
@@ -100,6 +126,7 @@ class Smoother {
     }
     result.sweeps += laplacian_sweeps();
     improve_worst();
+    if (spread_worst()) improve_worst();
     result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_after = count_inverted();
     return result;
@@ -662,6 +689,225 @@ class Smoother {
       if (!moved) break;
     }
   }
+
+  // The nodes round the worst quads moved together (boundary nodes along
+  // their curves), by L-BFGS on a soft maximum of 1 / scaled Jacobian over
+  // the corners of their quads. Node by node search stalls where a lattice
+  // shears over several rows (each node's best move spoils a neighbour's
+  // quad); moving them together spreads the shear over the region. Kept only
+  // if the minimum rises, with every node within the bounds of the node
+  // searches (sides, slide intervals, chords, turning). True if kept.
+  bool spread_worst() {
+    const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    if (!(worst > 0.0) || worst >= kSpreadBelow) return false;
+    std::vector<int> seeds, nodes;
+    for (std::size_t q = 0; q < quad_sj_.size(); ++q)
+      if (quad_sj_[q] < worst + kSpreadBand) seeds.push_back(static_cast<int>(q));
+    if (seeds.size() > kSpreadSeeds) {
+      std::nth_element(seeds.begin(), seeds.begin() + kSpreadSeeds, seeds.end(),
+                       [&](int a, int b) { return quad_sj_[a] < quad_sj_[b]; });
+      seeds.resize(kSpreadSeeds);
+    }
+    region(seeds, kSpreadRings, nodes);
+    Spread spread(*this, worst);
+    for (int n : nodes) {
+      if (!movable_[n]) continue;
+      Spread::Free node;
+      node.node = n;
+      node.start = mesh_.nodes[n];
+      if (mesh_.places[n].loop >= 0) {
+        double behind, ahead;
+        slide_interval(n, behind, ahead);
+        if (behind == ahead) continue;
+        node.bound = slide_bound(n, behind, ahead);
+        node.t_start = mesh_.places[n].t;
+        if (!may_slide_to(node.bound, node.t_start)) continue;
+      }
+      spread.add(node);
+    }
+    if (spread.free.empty()) return false;
+    spread.finish_setup();
+    std::vector<double> x(spread.variables, 0.0);
+    lbfgs_parameter_t parameters;
+    lbfgs_parameter_init(&parameters);
+    parameters.max_iterations = kSpreadSteps;
+    parameters.linesearch = LBFGS_LINESEARCH_BACKTRACKING;
+    parameters.max_linesearch = kSpreadLineSearch;
+    double value = 0.0;
+    lbfgs(static_cast<int>(x.size()), x.data(), &value, &Spread::evaluate, &Spread::progress, &spread, &parameters);
+    bool kept = spread.put(x.data());
+    if (kept) {
+      for (int q : spread.quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+      kept = *std::min_element(quad_sj_.begin(), quad_sj_.end()) > worst;
+    }
+    if (!kept) {
+      spread.put_back();
+      for (int q : spread.quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+    }
+    return kept;
+  }
+
+  // spread_worst's search: its nodes, variables and objective (liblbfgs's callbacks).
+  struct Spread {
+    struct Free {
+      int node = -1;
+      Vec2 start;
+      SlideBound bound;      // boundary nodes: where they may slide (bound.edge set)
+      double t_start = 0.0;  // and their parameter before
+      double t_unit = 0.0;   // the parameter step of one variable unit
+      int first = 0;         // its variable: x, y; or the parameter's
+    };
+    Smoother& smoother;
+    std::vector<Free> free;
+    std::vector<int> quads;           // the quads round the free nodes
+    std::vector<double> side_floors;  // per quad side: the least squared length allowed
+    std::vector<Vec2> gradient;       // per node, scratch
+    std::vector<Vec2> tangent;        // per node: a boundary node's curve derivative where it is
+    int variables = 0;
+    double scale;       // the minimum before: keeps the powers in range
+    double length = 1;  // the unit of the variables: the mean side round the free nodes
+    double least = 0;   // the least corner of the last evaluation
+    double best;        // the highest least corner of the steps so far
+    int best_step = 0;  // and its step
+
+    Spread(Smoother& s, double worst) : smoother(s), scale(worst), best(worst) {}
+
+    void add(const Free& node) { free.push_back(node); }
+
+    // The quads, their sides' floors and the variables' units.
+    void finish_setup() {
+      const QuadMesh& mesh = smoother.mesh_;
+      double sides = 0.0;
+      for (const Free& f : free) {
+        sides += std::sqrt(smoother.mean_squared_side(f.node));
+        for (int k = smoother.offsets_[f.node]; k < smoother.offsets_[f.node + 1]; ++k)
+          quads.push_back(smoother.corners_[k] / 4);
+      }
+      length = sides / static_cast<double>(free.size());
+      std::sort(quads.begin(), quads.end());
+      quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
+      for (int q : quads) {
+        const auto& quad = mesh.quads[q];
+        for (int i = 0; i < 4; ++i) {
+          const Vec2 side = mesh.nodes[quad[(i + 1) % 4]] - mesh.nodes[quad[i]];
+          const Vec2 facing = mesh.nodes[quad[(i + 2) % 4]] - mesh.nodes[quad[(i + 3) % 4]];
+          side_floors.push_back(std::min(dot(side, side), kShortestSide * kShortestSide * dot(facing, facing)));
+        }
+      }
+      // Each node's move from where it was, in mean sides (a boundary node's
+      // parameter step of that length), so that the search's scales and
+      // liblbfgs's tolerances fit any face.
+      for (Free& f : free) {
+        f.first = variables;
+        if (!f.bound.edge) {
+          variables += 2;
+          continue;
+        }
+        const double speed = norm(edge_point(*f.bound.edge, f.t_start).d1);
+        f.t_unit = speed > 0.0 ? length / speed : 0.0;
+        variables += 1;
+      }
+      gradient.assign(mesh.nodes.size(), Vec2{});
+      tangent.assign(mesh.nodes.size(), Vec2{});
+    }
+
+    // Puts the nodes where x says; a boundary node within its slide interval,
+    // and drawn back towards where it was as far as its chord and turning
+    // bounds need (bisection: they hold where it was). False if a side
+    // falls below its floor.
+    bool put(const double* x) {
+      QuadMesh& mesh = smoother.mesh_;
+      const auto place = [&](const Free& f, double t) {
+        const CurvePoint point = edge_point(*f.bound.edge, t);
+        mesh.nodes[f.node] = point.p;
+        mesh.places[f.node].t = t;
+        tangent[f.node] = point.d1;
+      };
+      for (const Free& f : free) {
+        if (!f.bound.edge) {
+          mesh.nodes[f.node] = f.start + length * Vec2{x[f.first], x[f.first + 1]};
+          continue;
+        }
+        place(f, smoother.clamp_to_interval(f.t_start + f.t_unit * x[f.first], f.bound.behind, f.bound.ahead));
+      }
+      for (const Free& f : free) {
+        if (!f.bound.edge || smoother.may_slide_to(f.bound, mesh.places[f.node].t)) continue;
+        double allowed = f.t_start, beyond = mesh.places[f.node].t;
+        for (int k = 0; k < kSlideBisections; ++k) {
+          const double middle = 0.5 * (allowed + beyond);
+          (smoother.may_slide_to(f.bound, middle) ? allowed : beyond) = middle;
+        }
+        place(f, allowed);
+      }
+      for (std::size_t j = 0; j < quads.size(); ++j) {
+        const auto& quad = mesh.quads[quads[j]];
+        for (int i = 0; i < 4; ++i) {
+          const Vec2 side = mesh.nodes[quad[(i + 1) % 4]] - mesh.nodes[quad[i]];
+          if (dot(side, side) < side_floors[4 * j + i]) return false;
+        }
+      }
+      return true;
+    }
+
+    void put_back() {
+      for (const Free& f : free) {
+        smoother.mesh_.nodes[f.node] = f.start;
+        if (f.bound.edge) smoother.mesh_.places[f.node].t = f.t_start;
+      }
+    }
+
+    // Stops the search (non-zero) once its least corner stalls.
+    static int progress(void* instance, const double*, const double*, double, double, double, double, int, int k, int) {
+      Spread& self = *static_cast<Spread*>(instance);
+      if (self.least > self.best + kSpreadGain) self.best = self.least, self.best_step = k;
+      return k - self.best_step >= kSpreadPatience ? 1 : 0;
+    }
+
+    // (1 / p) log sum (scale / s)^p over the corners, s their scaled
+    // Jacobians, and its gradient; out of bounds, a value no step accepts.
+    static double evaluate(void* instance, const double* x, double* g, int n, double /*step*/) {
+      Spread& self = *static_cast<Spread*>(instance);
+      std::fill(g, g + n, 0.0);
+      constexpr double kOut = std::numeric_limits<double>::max();
+      if (!self.put(x)) return kOut;
+      const QuadMesh& mesh = self.smoother.mesh_;
+      double sum = 0.0, least = std::numeric_limits<double>::infinity();
+      for (const Free& f : self.free) self.gradient[f.node] = Vec2{};
+      for (int q : self.quads) {
+        const auto& quad = mesh.quads[q];
+        for (int i = 0; i < 4; ++i) {
+          const int at = quad[i], next = quad[(i + 1) % 4], prev = quad[(i + 3) % 4];
+          const Vec2 a = mesh.nodes[next] - mesh.nodes[at], b = mesh.nodes[prev] - mesh.nodes[at];
+          const double la = norm(a), lb = norm(b);
+          const double s = cross(a, b) / (la * lb);
+          if (!(s > kSpreadFloor)) return kOut;
+          least = std::min(least, s);
+          double w = self.scale / s;
+          for (int power = 1; power < kSpreadPower; power *= 2) w *= w;
+          sum += w;
+          // dw / ds = -p w / s; the log's 1 / (p sum) is applied below.
+          const double dw = -kSpreadPower * w / s;
+          const Vec2 ds_da = Vec2{b.y, -b.x} / (la * lb) - (s / (la * la)) * a;
+          const Vec2 ds_db = Vec2{-a.y, a.x} / (la * lb) - (s / (lb * lb)) * b;
+          self.gradient[next] = self.gradient[next] + dw * ds_da;
+          self.gradient[prev] = self.gradient[prev] + dw * ds_db;
+          self.gradient[at] = self.gradient[at] - dw * (ds_da + ds_db);
+        }
+      }
+      self.least = least;
+      const double factor = 1.0 / (kSpreadPower * sum);
+      for (const Free& f : self.free) {
+        const Vec2 d = factor * self.gradient[f.node];
+        if (!f.bound.edge) {
+          g[f.first] = self.length * d.x;
+          g[f.first + 1] = self.length * d.y;
+        } else {
+          g[f.first] = f.t_unit * dot(d, self.tangent[f.node]);
+        }
+      }
+      return std::log(sum) / kSpreadPower;
+    }
+  };
 
   const FaceModel& face_;
   QuadMesh& mesh_;
