@@ -18,7 +18,9 @@ namespace mm {
 namespace {
 
 using test::face;
+using test::arc;
 using test::full_circle;
+using test::line;
 using test::polygon;
 
 struct Result {
@@ -203,6 +205,52 @@ TEST(Decomposition, SharpTriangleIsATriangleRoundAMinusOne) {
   const MeshedFace m = mesh_face(f, options);
   EXPECT_TRUE(test::mesh_validity_problems(f, m.blocks.mesh).empty());
   EXPECT_GT(m.quality.min_scaled_jacobian, 0.2);
+}
+
+// The last resort, the whole face as one polygon block: a pentagon gets its
+// five corners round a k = 1, a square none, a rounded slot (two convex
+// corners where the arcs meet the straight sides at a tangent are no
+// corners: none) a disc's k = -4; a face with a hole or a reflex corner is
+// refused, saying why. The blocks tile the face and mesh.
+TEST(Decomposition, TheWholeFaceBecomesOnePolygonBlockOnlyWhenItCan) {
+  DecompositionOptions whole;
+  whole.whole_face = true;
+  const auto one_block = [&](const FaceModel& f, int corners, int k) {
+    const MedialAxis axis = compute_medial_axis(f);
+    const MeshFlow flow = compute_mesh_flow(f, axis);
+    const Decomposition d = decompose(f, axis, flow, whole);
+    EXPECT_TRUE(test::decomposition_problems(f, flow, d).empty()) << f.name;
+    ASSERT_EQ(d.blocks.size(), 1u) << f.name;
+    EXPECT_EQ(d.blocks[0].kind, BlockKind::Polygon) << f.name;
+    EXPECT_EQ(static_cast<int>(d.blocks[0].corners.size()), corners) << f.name;
+    EXPECT_NEAR(d.blocks[0].area, f.area, 1e-9 * f.area) << f.name;
+    if (k == 0) {
+      EXPECT_LT(d.blocks[0].singularity, 0) << f.name;
+    } else {
+      ASSERT_GE(d.blocks[0].singularity, 0) << f.name;
+      EXPECT_EQ(d.singularities[d.blocks[0].singularity].k, k) << f.name;
+      EXPECT_TRUE(inside_polygon(d.blocks[0].outline, d.singularities[d.blocks[0].singularity].p)) << f.name;
+    }
+  };
+  std::vector<Vec2> pentagon;
+  for (int i = 0; i < 5; ++i) pentagon.push_back({std::cos(2 * kPi * i / 5), std::sin(2 * kPi * i / 5)});
+  one_block(face({polygon(pentagon)}, "pentagon"), 5, 1);
+  one_block(face({polygon({{0, 0}, {2, 0}, {2, 2}, {0, 2}})}, "square"), 4, 0);
+  one_block(
+      face({{line({0, 0}, {2, 0}), arc({2, 0}, {2, 1}, 0.5), line({2, 1}, {0, 1}), arc({0, 1}, {0, 0}, 0.5)}}, "slot"),
+      0, -4);
+  const auto refused = [&](const FaceModel& f, const std::string& why) {
+    const MedialAxis axis = compute_medial_axis(f);
+    const MeshFlow flow = compute_mesh_flow(f, axis);
+    try {
+      decompose(f, axis, flow, whole);
+      ADD_FAILURE() << f.name << " was made one block";
+    } catch (const SelfCheckError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  refused(face({polygon({{-2, -2}, {2, -2}, {2, 2}, {-2, 2}}), {full_circle({0, 0}, 0.8, -1)}}, "plate"), "holes");
+  refused(face({polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})}, "L"), "reflex corner");
 }
 
 // The orthogonal join (Fig. 18), on the census's faces where it is made: a

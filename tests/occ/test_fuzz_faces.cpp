@@ -823,6 +823,27 @@ TEST(FuzzFaces, AFixedJunctionsSectorWithNoEdgeBelongsToTheBlockBesideIt) {
   }
 }
 
+// A blob (fuzz seed 47) whose medial axis meets in a junction of five
+// branches with two k = -1 switches beside it: every decomposition attempt
+// left a block's outline pieces 600 apart (the splits round the junction
+// miss each other), so the face stopped, with or without merging. A face
+// of one loop with no reflex corner and at most six corners now falls back
+// last of all on the whole face as one polygon block: here the 0-sided
+// template of a disc, four valence-3 nodes.
+TEST(FuzzFaces, AFaceWhoseMedialDecompositionFailsMeshesAsOneBlock) {
+  for (const double size_factor : {0.05, 0.01}) {
+    const std::optional<MeshedFace> m = valid_mesh_of("bspline_47_787", size_factor);
+    ASSERT_TRUE(m) << size_factor;
+    ASSERT_EQ(m->decomposition.blocks.size(), 1u);
+    EXPECT_EQ(m->decomposition.blocks[0].kind, BlockKind::Polygon);
+    ASSERT_FALSE(m->blocks.notes.empty());
+    EXPECT_NE(m->blocks.notes.back().find("the whole face as one block"), std::string::npos);
+    EXPECT_EQ(m->quality.irregular_interior.size(), 4u);
+    for (const IrregularNode& n : m->quality.irregular_interior) EXPECT_EQ(n.elements, 3);
+    EXPECT_GT(m->quality.min_scaled_jacobian, 0.8) << size_factor;
+  }
+}
+
 // Blobs whose submapped block wrapped half round their hole (fuzz seed 45),
 // its side along the hole turning in by about 190 degrees with no corner:
 // at a hundredth of the diagonal the harmonic layout folded over a band of

@@ -358,6 +358,22 @@ OutlinePiece piece_part(const FaceModel& face, const OutlinePiece& piece, double
   return part;
 }
 
+// An outline's centroid, if it lies inside the outline.
+std::optional<Vec2> centroid_inside(const std::vector<Vec2>& outline) {
+  Vec2 centroid{0, 0};
+  double area = 0.0;
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const Vec2 p = outline[i], q = outline[(i + 1) % outline.size()];
+    const double a = cross(p, q);
+    area += a;
+    centroid = centroid + (p + q) * a;
+  }
+  if (!(std::abs(area) > 0.0)) return std::nullopt;
+  centroid = centroid / (3.0 * area);
+  if (!inside_polygon(outline, centroid)) return std::nullopt;
+  return centroid;
+}
+
 // A boundary piece cut into `parts` equal ranges of its parameter.
 std::vector<OutlinePiece> parts_of(const FaceModel& face, const OutlinePiece& piece, int parts) {
   const int samples = std::max(2, static_cast<int>(piece.points.size()) / parts);
@@ -2805,22 +2821,6 @@ class Decomposer {
     return piece;
   }
 
-  // An outline's centroid, if it lies inside the outline.
-  static std::optional<Vec2> centroid_inside(const std::vector<Vec2>& outline) {
-    Vec2 centroid{0, 0};
-    double area = 0.0;
-    for (std::size_t i = 0; i < outline.size(); ++i) {
-      const Vec2 p = outline[i], q = outline[(i + 1) % outline.size()];
-      const double a = cross(p, q);
-      area += a;
-      centroid = centroid + (p + q) * a;
-    }
-    if (!(std::abs(area) > 0.0)) return std::nullopt;
-    centroid = centroid / (3.0 * area);
-    if (!inside_polygon(outline, centroid)) return std::nullopt;
-    return centroid;
-  }
-
   // Whether a block has a convex corner where its outline runs nearly
   // straight on (interior angle over kFlat).
   bool has_flat_convex_corner(const Block& b) const {
@@ -3087,8 +3087,63 @@ const char* split_reason_name(SplitReason reason) {
   return "unknown";
 }
 
+namespace {
+
+// Samples of each boundary edge in the whole-face block's outline.
+constexpr int kWholeFaceEdgeSamples = 64;
+
+// The whole face as one polygon block (DecompositionOptions::whole_face).
+Decomposition whole_face_block(const FaceModel& face) {
+  const auto refuse = [&](const std::string& why) {
+    return SelfCheckError(face.name, "decomposition: the whole face cannot be one block: " + why);
+  };
+  if (face.holes() > 0) throw refuse("it has holes");
+  const std::vector<BoundaryEdge>& edges = face.loops[0].edges;
+  std::vector<int> type(edges.size(), 2);  // at each edge's start: 2 where the loop runs on smoothly
+  for (const Corner& c : face.corners) {
+    if (c.loop != 0 || c.nc == 2) continue;
+    if (c.nc > 2) throw refuse("it has a reflex corner");
+    type[c.vertex] = 1;  // a cusp (nc 0) too: its one element
+  }
+  const long corners = std::count(type.begin(), type.end(), 1);
+  if (corners > 6) throw refuse("it has " + std::to_string(corners) + " corners (a polygon block takes 6 at most)");
+  BlockRing ring;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    OutlinePiece piece;
+    piece.loop = 0;
+    piece.edge = static_cast<int>(e);
+    piece.t_from = edges[e].t_start;
+    piece.t_to = edges[e].t_end;
+    piece.points = {edges[e].start};
+    for (int k = 1; k < kWholeFaceEdgeSamples; ++k)
+      piece.points.push_back(
+          edge_point(edges[e], piece.t_from + (piece.t_to - piece.t_from) * k / kWholeFaceEdgeSamples).p);
+    piece.points.push_back(edges[e].end);
+    ring.pieces.push_back(std::move(piece));
+    ring.start_type.push_back(type[e]);
+  }
+  Decomposition d;
+  Block b;
+  set_outline(b, ring, face.tolerance);
+  b.kind = BlockKind::Polygon;
+  b.area = face.area;
+  if (corners != 4) {
+    const std::optional<Vec2> centroid = centroid_inside(b.outline);
+    if (!centroid) throw refuse("its centroid lies outside it");
+    b.singularity = 0;
+    d.singularities.push_back({*centroid, static_cast<int>(corners) - 4, false, {}});
+  }
+  d.blocks.push_back(std::move(b));
+  d.notes.push_back("the whole face became one block of its " + std::to_string(corners) +
+                    " corners (a last resort: the medial decomposition failed its self-check)");
+  return d;
+}
+
+}  // namespace
+
 Decomposition decompose(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow,
                         const DecompositionOptions& options) {
+  if (options.whole_face) return whole_face_block(face);
   return Decomposer(face, axis, flow, options).run();
 }
 

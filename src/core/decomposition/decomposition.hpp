@@ -29,6 +29,11 @@ struct DecompositionOptions {
   // Where a split ends at a concave corner off its cross, beside a split
   // along the cross, end it on that split at a right angle (Fig. 18).
   bool orthogonal_joins = true;
+  // The whole face as one polygon block of its corners, with no medial
+  // axis: for a face of one loop with no reflex corner and at most 6
+  // corners (else a SelfCheckError saying why not), a last resort where
+  // the medial decomposition fails its self-check.
+  bool whole_face = false;
 };
 
 enum class SplitReason {

@@ -96,6 +96,7 @@ std::string settings_text(const PipelineOptions& options) {
   if (options.split_concave_corners) text << " and splits at every concave corner";
   if (!options.submap_corners_follow_turning) text << " and submapped corners by the corner rule alone";
   if (!options.orthogonal_joins) text << " and no orthogonal joins";
+  if (options.whole_face) text << " and the whole face as one block";
   return text.str();
 }
 
@@ -119,6 +120,7 @@ Decomposition decompose_flow(const FaceFlow& f, const PipelineOptions& options, 
   decomposition.split_concave_corners = options.split_concave_corners;
   decomposition.submap_corners_follow_turning = options.submap_corners_follow_turning;
   decomposition.orthogonal_joins = options.orthogonal_joins;
+  decomposition.whole_face = options.whole_face;
   Decomposition result = decompose(f.face, f.axis, f.flow, decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
@@ -150,7 +152,9 @@ DecompositionKey decomposition_key(const std::vector<const FaceFlow*>& flows, co
 // reach fails at the default size a fallback's decomposition meshes better,
 // fuzz aerofoil_12_390 at 0.39 against 0.11 untangled wide), last with
 // widely folded submapped blocks placed by Winslow's grid as well
-// (MeshingOptions::regrid_wide_folds). The first
+// (MeshingOptions::regrid_wide_folds), and last of all with the whole face
+// as one polygon block (DecompositionOptions::whole_face: a face of one
+// loop and few corners whose medial decomposition fails). The first
 // failure is the one thrown when all fail. Returns the note to hand on
 // (empty if none was needed); the time the failed attempts took is added to
 // `stages` as "failed_attempts".
@@ -192,6 +196,16 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
       return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
              "), and with each fallback; meshed with those settings, blocks folded widely by their harmonic "
              "layout placed by Winslow's grid, and untangling reaching further";
+    } catch (const SelfCheckError&) {
+    }
+    add_stage(stages, "failed_attempts", seconds_since(start));
+    start = Clock::now();
+    PipelineOptions whole = options;
+    whole.whole_face = true;
+    try {
+      attempt(whole);
+      return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
+             "), and with each fallback; meshed with the whole face as one block";
     } catch (const SelfCheckError&) {
     }
     add_stage(stages, "failed_attempts", seconds_since(start));

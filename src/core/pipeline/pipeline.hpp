@@ -17,6 +17,7 @@ struct PipelineOptions {
   bool split_concave_corners = false;         // DecompositionOptions::split_concave_corners
   bool submap_corners_follow_turning = true;  // DecompositionOptions::submap_corners_follow_turning
   bool orthogonal_joins = true;               // DecompositionOptions::orthogonal_joins
+  bool whole_face = false;                    // DecompositionOptions::whole_face
 };
 
 struct MeshedFace {
