@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <random>
 #include <stdexcept>
 
@@ -264,6 +265,52 @@ TEST(Smoothing, BoundaryNodesSlideAlongTheirExactCurves) {
   for (int i = 0; i <= nr; ++i) bottom.push_back(id(i, 0)), left.push_back(id(nr - i, na));
   for (int j = 0; j <= na; ++j) outer.push_back(id(nr, j)), inner.push_back(id(0, na - j));
   for (const auto& side : {bottom, outer, left, inner}) check_order(side);
+}
+
+// The joint search (SmoothingOptions::joint_search_only) on meshes the
+// node search has settled: squares whose bottom side's nodes crowd to the
+// right and top side's to the left (both sides fixed, as a shared edge's
+// are; the left and right sides' nodes slide), so the lattice shears over
+// every row. It never lowers the worst element, leaves none inverted,
+// keeps boundary nodes on their curves, in order, and the corners in
+// place. (Where it lifts the worst element, lattices sheared beside
+// singularities of real faces, MeshReference tests it.)
+TEST(Smoothing, JointSearchKeepsTheNodeSearchesBounds) {
+  const FaceModel square = unit_square();
+  int searched = 0;  // meshes poor enough for the search
+  for (const int n : {8, 12, 16})
+    for (const double power : {3.0, 4.0, 5.0, 6.0, 8.0}) {
+      QuadMesh mesh = grid_mesh(square, n, n, [&](int i, int j) {
+        const double u = double(i) / n, v = double(j) / n;
+        return Vec2{(1 - v) * (1 - std::pow(1 - u, power)) + v * std::pow(u, power), v};
+      });
+      SmoothingOptions options;
+      for (int i = 0; i <= n; ++i) options.fixed.push_back(i), options.fixed.push_back(n * (n + 1) + i);
+      smooth_mesh(square, mesh, options);
+      const QuadMesh settled = mesh;
+      const double before = min_sj(mesh);
+      options.joint_search_only = true;
+      const SmoothingResult r = smooth_mesh(square, mesh, options);
+      searched += before < 0.75;
+      EXPECT_GE(min_sj(mesh), before) << n << " " << power;
+      EXPECT_NEAR(r.min_scaled_jacobian_after, min_sj(mesh), 1e-12);
+      EXPECT_EQ(r.inverted_after, 0) << n << " " << power;
+      for (std::size_t k = 0; k < mesh.nodes.size(); ++k) {
+        const NodePlace& place = mesh.places[k];
+        if (place.face_corner) {
+          EXPECT_EQ(distance(mesh.nodes[k], settled.nodes[k]), 0.0);
+        }
+        if (place.loop < 0) continue;
+        const BoundaryEdge& edge = square.loops[place.loop].edges[place.edge];
+        EXPECT_LT(distance(mesh.nodes[k], edge_point(edge, place.t).p), 1e-12);
+      }
+      // The left and right sides' nodes keep their order up the side.
+      for (int j = 1; j < n; ++j) {
+        EXPECT_LT(mesh.nodes[(j - 1) * (n + 1)].y, mesh.nodes[j * (n + 1)].y);
+        EXPECT_LT(mesh.nodes[(j - 1) * (n + 1) + n].y, mesh.nodes[j * (n + 1) + n].y);
+      }
+    }
+  EXPECT_GT(searched, 5);
 }
 
 TEST(Smoothing, FoldedQuadIsUntangled) {

@@ -355,6 +355,16 @@ class BlockMesher {
             break;
         }
       }
+      // Last, the nodes round the worst elements moved together, on the
+      // best mesh seen: after the passes above, not in each, so that it
+      // neither spares a face the free passes (by lifting it just over the
+      // bar) nor starts them elsewhere; a mesh never comes out worse for it.
+      if (best.inverted_after == 0) {
+        SmoothingOptions joint = smoothing;
+        joint.max_boundary_turn = kMaxTurnPerInterval;
+        joint.joint_search_only = true;
+        smooth_mesh(face_, mesh_, joint);
+      }
     }
     const auto t3 = std::chrono::steady_clock::now();
     if (options_.order == 2) {

@@ -116,6 +116,12 @@ class Smoother {
     if (mesh_.quads.empty()) return result;
     result.min_scaled_jacobian_before = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_before = count_inverted();
+    if (options_.joint_search_only) {
+      if (spread_worst()) improve_worst();
+      result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+      result.inverted_after = count_inverted();
+      return result;
+    }
     if (result.inverted_before > 0) result.sweeps += untangle();
     // Some folds need a side to shrink on the way out (a high-lift slot,
     // fuzz aerofoil_3_217): untangled once more without the side floor.
@@ -126,7 +132,6 @@ class Smoother {
     }
     result.sweeps += laplacian_sweeps();
     improve_worst();
-    if (spread_worst()) improve_worst();
     result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_after = count_inverted();
     return result;

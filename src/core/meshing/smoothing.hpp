@@ -19,6 +19,10 @@ struct SmoothingOptions {
   // How far untangling reaches round folded elements, in rings of elements,
   // before it relaxes the region once (see untangle in smoothing.cpp).
   int untangle_rings = 8;
+  // Only the joint search round the worst quads (then the node search
+  // there if it moved them): for a mesh the other steps have settled, once
+  // after every other smoothing run (see spread_worst in smoothing.cpp).
+  bool joint_search_only = false;
 };
 
 struct SmoothingResult {
