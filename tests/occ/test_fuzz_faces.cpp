@@ -745,9 +745,11 @@ TEST(FuzzFaces, BlocksOfTwoOrThreeCornersArePolygonsNotSubmapsWithCornersOnACurv
       // (bspline_26_197 keeps one such corner in a submap with a reflex corner.)
       const bool convex =
           std::none_of(b.corners.begin(), b.corners.end(), [](const BlockCorner& c) { return c.type > 1; });
-      for (const BlockCorner& c : b.corners)
-        if (convex && c.type == 1)
+      for (const BlockCorner& c : b.corners) {
+        if (convex && c.type == 1) {
           EXPECT_LT(corner_angle(b, c.p), 157.5) << name << " corner at " << c.p.x << ", " << c.p.y;
+        }
+      }
       const int m = static_cast<int>(b.corners.size());
       if (b.kind != BlockKind::Polygon || m > 3) continue;
       ++polygons;

@@ -766,7 +766,7 @@ class Smoother {
     std::vector<Free> free;
     std::vector<int> quads;           // the quads round the free nodes
     std::vector<double> side_floors;  // per quad side: the least squared length allowed
-    std::vector<Vec2> gradient;       // per node, scratch
+    std::vector<Vec2> gradient;       // per node, scratch (only the free nodes' entries are read)
     std::vector<Vec2> tangent;        // per node: a boundary node's curve derivative where it is
     int variables = 0;
     double scale;       // the minimum before: keeps the powers in range

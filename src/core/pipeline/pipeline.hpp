@@ -31,8 +31,10 @@ struct MeshedFace {
 // after them: submapped blocks' corners by the corner rule alone, less
 // merging (factor 0.5, 0.25, none), splits at every concave corner, then
 // the options asked for with untangling reaching further
-// (MeshingOptions::wide_untangling), and last with widely folded submapped
-// blocks placed by Winslow's grid too (MeshingOptions::regrid_wide_folds). A mesh far coarser than asked
+// (MeshingOptions::wide_untangling), then with widely folded submapped
+// blocks placed by Winslow's grid too (MeshingOptions::regrid_wide_folds),
+// last with the whole face as one polygon block (DecompositionOptions::
+// whole_face). A mesh far coarser than asked
 // (BlockMesh::coarser_than_asked) is made again with the singularities merged
 // within a twentieth of the face's diagonal, as at the default size, and
 // kept if it no longer is. A note in blocks.notes says when a fallback was used.
