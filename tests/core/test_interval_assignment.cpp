@@ -214,6 +214,27 @@ TEST(IntervalAssignment, FacingSidesStayAnIntervalApart) {
   EXPECT_THROW(assign_intervals(p), std::invalid_argument);
 }
 
+// A rectangle whose bottom and top face each other three elements apart
+// while its sides want 20 and 30: the lattice's lines across them are
+// capped (a crowding row), and the answer names that pair. Solved again
+// with the pair given from the start (as mesh_blocks does after a
+// separation round, sparing the solves that find it again), the counts are
+// the same; pairs the problem does not have are ignored.
+TEST(IntervalAssignment, CrowdedFacingPairsCarryOverToTheNextSolve) {
+  IntervalProblem p = submap({1, 1, 1, 1}, {3, 20, 3, 30});
+  p.blocks[0].facing = {{0, 2}};
+  p.blocks[0].facing_goals = {3.0};
+  const IntervalAssignment a = assign_intervals(p);
+  expect_valid(p, a);
+  ASSERT_EQ(a.crowded.size(), 1u);
+  EXPECT_EQ(a.crowded[0], (std::pair<std::size_t, std::size_t>{0, 0}));
+  const IntervalAssignment again = assign_intervals(p, a.crowded);
+  EXPECT_EQ(again.counts, a.counts);
+  EXPECT_EQ(again.crowded, a.crowded);
+  const IntervalAssignment unknown = assign_intervals(p, {{5, 0}, {0, 3}});
+  EXPECT_EQ(unknown.counts, a.counts);
+}
+
 // A rectangle with a rectangular hole, cut once from its left side to the
 // middle of the hole's left wall: the outline runs along the cut both ways,
 // and round the hole between, so the hole's logical outline must close for

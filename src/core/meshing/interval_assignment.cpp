@@ -1014,18 +1014,21 @@ std::vector<FoldedSides> folded_sides(const BlockShape& block, const std::vector
   return pairs;
 }
 
-IntervalAssignment assign_intervals(const IntervalProblem& problem) {
+IntervalAssignment assign_intervals(const IntervalProblem& problem,
+                                    const std::vector<std::pair<std::size_t, std::size_t>>& crowded_before) {
   validate(problem);
   for (size_t b = 0; b < problem.blocks.size(); ++b)
     if (problem.blocks[b].kind == BlockTemplate::Submap) submap_directions(problem.blocks[b], b);
 
   if (problem.segments.empty()) return {};  // no block can name a segment either: validated above
-  IntervalAssignment answer = solve_in_stages(problem, {});
+  Crowded crowded;
+  for (const auto& [b, i] : crowded_before)
+    if (b < problem.blocks.size() && i < problem.blocks[b].facing_goals.size()) crowded.insert({b, i});
+  IntervalAssignment answer = solve_in_stages(problem, crowded);
   // Facing sides the answer crowds get their crowding rows, and the counts
   // are solved again (only then: these rows change which of the answers of
   // equal cost the solver meets, and so the meshes of faces they would not
   // constrain at all).
-  Crowded crowded;
   for (int round = 0; round < kCrowdingRounds; ++round) {
     const std::size_t before = crowded.size();
     for (const auto& pair : crowded_pairs(problem, answer.counts)) crowded.insert(pair);
@@ -1034,6 +1037,7 @@ IntervalAssignment assign_intervals(const IntervalProblem& problem) {
   }
   const std::string violation = first_violation(problem, answer);
   if (!violation.empty()) throw SelfCheckError("interval assignment", violation);
+  answer.crowded.assign(crowded.begin(), crowded.end());
   return answer;
 }
 

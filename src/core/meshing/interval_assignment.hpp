@@ -36,6 +36,8 @@ struct IntervalAssignment {
   // all means the equations force some count to 0 (IntervalsInfeasible): the
   // block structure, not the goals, must change (mesh_blocks does).
   std::vector<std::string> notes;
+  // The facing pairs (block, index into its `facing`) given crowding rows.
+  std::vector<std::pair<std::size_t, std::size_t>> crowded;
 };
 
 // No counts satisfy the blocks' conditions, whatever the goals: the block
@@ -65,7 +67,11 @@ struct IntervalsInfeasible : std::runtime_error {
 // turning +4) throws std::invalid_argument; a problem no counts satisfy throws
 // IntervalsInfeasible naming the first block whose conditions cannot hold with
 // those before it.
-IntervalAssignment assign_intervals(const IntervalProblem& problem);
+// `crowded`: facing pairs to give crowding rows from the start (a previous
+// answer's, for the same blocks with more facing pairs appended), sparing
+// the solves that would find them again.
+IntervalAssignment assign_intervals(const IntervalProblem& problem,
+                                    const std::vector<std::pair<std::size_t, std::size_t>>& crowded = {});
 
 // Where a submapped block's lattice outline meets itself for the given
 // counts (per segment; no mesh then), the facing pairs for BlockShape that

@@ -201,7 +201,7 @@ IntervalAssignment assign_or_relax(const MakeProblem& make_problem, const Relax&
     }
     if (!separated) break;
     problem = make_problem();
-    assignment = assign_intervals(problem);
+    assignment = assign_intervals(problem, assignment.crowded);
   }
   return assignment;
 }
