@@ -178,36 +178,31 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
       } catch (const SelfCheckError&) {
       }
     }
-    add_stage(stages, "failed_attempts", seconds_since(start));
-    start = Clock::now();
+    // The last resorts, after every fallback: true if `settings` passed.
+    std::string note;
+    const auto last_resort = [&](const PipelineOptions& settings, const std::string& meshed_with) {
+      add_stage(stages, "failed_attempts", seconds_since(start));
+      start = Clock::now();
+      try {
+        attempt(settings);
+      } catch (const SelfCheckError&) {
+        return false;
+      }
+      note = "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
+             "), and with each fallback; meshed with " + meshed_with;
+      return true;
+    };
     PipelineOptions wide = options;
     wide.meshing.wide_untangling = true;
-    try {
-      attempt(wide);
-      return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
-             "), and with each fallback; meshed with those settings and untangling reaching further";
-    } catch (const SelfCheckError&) {
-    }
-    add_stage(stages, "failed_attempts", seconds_since(start));
-    start = Clock::now();
+    if (last_resort(wide, "those settings and untangling reaching further")) return note;
     wide.meshing.regrid_wide_folds = true;
-    try {
-      attempt(wide);
-      return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
-             "), and with each fallback; meshed with those settings, blocks folded widely by their harmonic "
-             "layout placed by Winslow's grid, and untangling reaching further";
-    } catch (const SelfCheckError&) {
-    }
-    add_stage(stages, "failed_attempts", seconds_since(start));
-    start = Clock::now();
+    if (last_resort(wide,
+                    "those settings, blocks folded widely by their harmonic layout placed by Winslow's grid, and "
+                    "untangling reaching further"))
+      return note;
     PipelineOptions whole = options;
     whole.whole_face = true;
-    try {
-      attempt(whole);
-      return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
-             "), and with each fallback; meshed with the whole face as one block";
-    } catch (const SelfCheckError&) {
-    }
+    if (last_resort(whole, "the whole face as one block")) return note;
     add_stage(stages, "failed_attempts", seconds_since(start));
     throw;
   }
