@@ -102,6 +102,30 @@ TEST(FaceModel, OrientsOuterLoopCounterClockwiseAndHolesClockwise) {
   EXPECT_EQ(predicted_sum_k(face), 4);
 }
 
+// A U drawn as a 1.2 x 0.6 rectangle with a 0.8 x 0.5 hole whose bottom
+// lies a sliver (6.4e-7, as SOT404.stp face 22) above the outline's: every
+// element across the sliver is flat, so the two loops become one round it,
+// the U (8 right-angled corners, 2 reflex), its area less the sliver's. A hole 1e-3 off
+// the outline stays a hole.
+TEST(FaceModel, AHoleASliverOffTheOutlineJoinsIt) {
+  const auto u_face = [](double gap) {
+    return build_face_model(raw({polygon({{0, 0}, {1.2, 0}, {1.2, 0.6}, {0, 0.6}}),
+                                 polygon({{0.2, gap}, {0.2, 0.5}, {1.0, 0.5}, {1.0, gap}})}));
+  };
+  const FaceModel u = u_face(6.4e-7);
+  ASSERT_EQ(u.loops.size(), 1u);
+  EXPECT_EQ(u.loops[0].edges.size(), 8u);
+  EXPECT_NEAR(u.area, 0.72 - 0.8 * 0.5, 1e-12);
+  EXPECT_NEAR(signed_area(u.loops[0]), u.area, 1e-12);
+  EXPECT_EQ(u.corners.size(), 8u);
+  EXPECT_EQ(std::count_if(u.corners.begin(), u.corners.end(), [](const Corner& c) { return c.nc == 3; }), 2);
+  for (const Corner& c : u.corners) EXPECT_NEAR(c.angle, c.nc == 3 ? 1.5 * kPi : 0.5 * kPi, 1e-9);
+  EXPECT_EQ(predicted_sum_k(u), 0);
+  const FaceModel framed = u_face(1e-3);
+  EXPECT_EQ(framed.loops.size(), 2u);
+  EXPECT_NEAR(framed.area, 0.72 - 0.8 * (0.5 - 1e-3), 1e-12);
+}
+
 TEST(FaceModel, ReflexCornerOfAnLShape) {
   const FaceModel face = build_face_model(raw({polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}})}));
   int reflex = 0;
