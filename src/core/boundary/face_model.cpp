@@ -535,10 +535,11 @@ bool shared_stretch(const BoundaryEdge& in, const BoundaryEdge& other, double to
 
 // Two loops running along each other the opposite ways closer than
 // `width` (a U drawn as a rectangle with a hole whose side lies 6.4e-7 off
-// the outline: SOT404.stp faces 20, 22 and 36) bound a slit or a sliver
-// every element across is flat in: they become one loop round the
-// stretch, the one with the lower index kept (the outline stays loop 0).
-// Loops oriented already.
+// the outline: SOT404.stp face 22) bound a slit or a sliver every element
+// across is flat in: they become one loop round the stretch, the one with
+// the lower index kept (the outline stays loop 0), where the ends left
+// apart by the parts left out can be joined by moving a line's end (else
+// the loops stay as they are). Loops oriented already.
 void splice_loops_along_shared_stretches(std::vector<Loop>& loops, double width) {
   const double tolerance = width, reach = 10.0 * width;
   for (bool spliced = true; spliced;) {
@@ -568,6 +569,7 @@ void splice_loops_along_shared_stretches(std::vector<Loop>& loops, double width)
             for (std::size_t k = i + 1; k < ea.size(); ++k) joined.push_back(ea[k]);
             // Where a part was left out its neighbours' ends lie within the
             // reach: one vertex, on the outline's line (p and q).
+            bool closed = true;
             for (std::size_t k = 0; k < joined.size(); ++k) {
               BoundaryEdge& before = joined[k];
               BoundaryEdge& next = joined[(k + 1) % joined.size()];
@@ -576,7 +578,10 @@ void splice_loops_along_shared_stretches(std::vector<Loop>& loops, double width)
                 before = line_part(before, before.start, next.start);
               else if (curve_type(next.curve) == CurveType::Line)
                 next = line_part(next, before.end, next.end);
+              else
+                closed = false;
             }
+            if (!closed) continue;
             loops[a].edges = std::move(joined);
             loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(b));
             spliced = true;
