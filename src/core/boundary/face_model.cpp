@@ -234,15 +234,22 @@ void snap_loop(std::vector<BoundaryEdge>& loop, int loop_index, double gap_toler
   }
 }
 
+// Edge `of` as a line from a to b, parameter 0 at a to its length at b.
+BoundaryEdge line_part(const BoundaryEdge& of, Vec2 a, Vec2 b) {
+  BoundaryEdge part = of;
+  const double length = distance(a, b);
+  part.curve = LineCurve{a, (b - a) / length};
+  part.t_start = 0.0;
+  part.t_end = length;
+  part.start = a;
+  part.end = b;
+  return part;
+}
+
 // Straight edges are rebuilt through their snapped vertices so they stay exact.
 void rebuild_lines(std::vector<BoundaryEdge>& loop) {
-  for (auto& edge : loop) {
-    if (curve_type(edge.curve) != CurveType::Line) continue;
-    const double length = distance(edge.start, edge.end);
-    edge.curve = LineCurve{edge.start, (edge.end - edge.start) / length};
-    edge.t_start = 0.0;
-    edge.t_end = length;
-  }
+  for (auto& edge : loop)
+    if (curve_type(edge.curve) == CurveType::Line) edge = line_part(edge, edge.start, edge.end);
 }
 
 // Interior angle at the vertex where edge `in` ends and edge `out` starts.
@@ -502,18 +509,6 @@ std::array<double, 3> to_3d(const Frame& f, Vec2 p) {
 // element can cross well: the two loops are joined round it.
 constexpr double kSliverWidth = 1e-6;
 
-// A line edge from a to b, as rebuild_lines makes them.
-BoundaryEdge line_part(const BoundaryEdge& of, Vec2 a, Vec2 b) {
-  BoundaryEdge part = of;
-  const double length = distance(a, b);
-  part.curve = LineCurve{a, (b - a) / length};
-  part.t_start = 0.0;
-  part.t_end = length;
-  part.start = a;
-  part.end = b;
-  return part;
-}
-
 // Where line edge `in` of one loop and line edge `other` of another run
 // along each other the opposite ways over more than `reach`: the stretch's
 // ends p, q in `in`'s direction. The material lies on neither side there
@@ -533,60 +528,61 @@ bool shared_stretch(const BoundaryEdge& in, const BoundaryEdge& other, double to
   return true;
 }
 
+// Loop a (edge i) and loop b (edge j) joined round their shared stretch
+// p..q: along edge i to p, along edge j from p round loop b back to q,
+// along edge i from q on; parts shorter than `reach` are left out, and
+// where one was, its neighbours' ends become one vertex on edge i's line by
+// moving a line's end. Empty where a curve would have to move instead.
+std::vector<BoundaryEdge> joined_round(const Loop& a, std::size_t i, const Loop& b, std::size_t j, Vec2 p, Vec2 q,
+                                       double reach) {
+  const BoundaryEdge &in = a.edges[i], &other = b.edges[j];
+  std::vector<BoundaryEdge> joined;
+  const auto add = [&](const BoundaryEdge& of, Vec2 from, Vec2 to) {
+    if (distance(from, to) > reach) joined.push_back(line_part(of, from, to));
+  };
+  joined.insert(joined.end(), a.edges.begin(), a.edges.begin() + static_cast<std::ptrdiff_t>(i));
+  add(in, in.start, p);
+  add(other, p, other.end);
+  for (std::size_t k = 1; k < b.edges.size(); ++k) joined.push_back(b.edges[(j + k) % b.edges.size()]);
+  add(other, other.start, q);
+  const std::size_t from_q = joined.size();
+  add(in, q, in.end);
+  joined.insert(joined.end(), a.edges.begin() + static_cast<std::ptrdiff_t>(i) + 1, a.edges.end());
+  for (std::size_t k = 0; k < joined.size(); ++k) {
+    BoundaryEdge& before = joined[k];
+    BoundaryEdge& next = joined[(k + 1) % joined.size()];
+    if (distance(before.end, next.start) == 0.0) continue;
+    if ((k + 1) % joined.size() == from_q && curve_type(before.curve) == CurveType::Line)
+      before = line_part(before, before.start, next.start);
+    else if (curve_type(next.curve) == CurveType::Line)
+      next = line_part(next, before.end, next.end);
+    else
+      return {};
+  }
+  return joined;
+}
+
 // Two loops running along each other the opposite ways closer than
 // `width` (a U drawn as a rectangle with a hole whose side lies 6.4e-7 off
 // the outline: SOT404.stp face 22) bound a slit or a sliver every element
-// across is flat in: they become one loop round the stretch, the one with
-// the lower index kept (the outline stays loop 0), where the ends left
-// apart by the parts left out can be joined by moving a line's end (else
-// the loops stay as they are). Loops oriented already.
-void splice_loops_along_shared_stretches(std::vector<Loop>& loops, double width) {
-  const double tolerance = width, reach = 10.0 * width;
-  for (bool spliced = true; spliced;) {
-    spliced = false;
-    for (std::size_t a = 0; a < loops.size() && !spliced; ++a)
-      for (std::size_t b = a + 1; b < loops.size() && !spliced; ++b)
-        for (std::size_t i = 0; i < loops[a].edges.size() && !spliced; ++i)
-          for (std::size_t j = 0; j < loops[b].edges.size() && !spliced; ++j) {
-            const BoundaryEdge &in = loops[a].edges[i], &other = loops[b].edges[j];
-            Vec2 p, q;
-            if (!shared_stretch(in, other, tolerance, reach, p, q)) continue;
-            // Along `in` to p, along `other` from p round loop b back to q,
-            // along `in` from q on: parts shorter than the reach left out.
-            std::vector<BoundaryEdge> joined;
-            const auto add = [&](const BoundaryEdge& of, Vec2 from, Vec2 to) {
-              if (distance(from, to) > reach) joined.push_back(line_part(of, from, to));
-            };
-            const auto& ea = loops[a].edges;
-            const auto& eb = loops[b].edges;
-            for (std::size_t k = 0; k < i; ++k) joined.push_back(ea[k]);
-            add(in, in.start, p);
-            add(other, p, other.end);
-            for (std::size_t k = 1; k < eb.size(); ++k) joined.push_back(eb[(j + k) % eb.size()]);
-            add(other, other.start, q);
-            const std::size_t from_q = joined.size();
-            add(in, q, in.end);
-            for (std::size_t k = i + 1; k < ea.size(); ++k) joined.push_back(ea[k]);
-            // Where a part was left out its neighbours' ends lie within the
-            // reach: one vertex, on the outline's line (p and q).
-            bool closed = true;
-            for (std::size_t k = 0; k < joined.size(); ++k) {
-              BoundaryEdge& before = joined[k];
-              BoundaryEdge& next = joined[(k + 1) % joined.size()];
-              if (distance(before.end, next.start) == 0.0) continue;
-              if ((k + 1) % joined.size() == from_q && curve_type(before.curve) == CurveType::Line)
-                before = line_part(before, before.start, next.start);
-              else if (curve_type(next.curve) == CurveType::Line)
-                next = line_part(next, before.end, next.end);
-              else
-                closed = false;
-            }
-            if (!closed) continue;
-            loops[a].edges = std::move(joined);
-            loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(b));
-            spliced = true;
-          }
-  }
+// across is flat in: they become one loop round the stretch (joined_round),
+// the one with the lower index kept (the outline stays loop 0). Loops
+// oriented already. Returns whether two loops were joined.
+bool splice_one_shared_stretch(std::vector<Loop>& loops, double width) {
+  const double reach = 10.0 * width;
+  for (std::size_t a = 0; a < loops.size(); ++a)
+    for (std::size_t b = a + 1; b < loops.size(); ++b)
+      for (std::size_t i = 0; i < loops[a].edges.size(); ++i)
+        for (std::size_t j = 0; j < loops[b].edges.size(); ++j) {
+          Vec2 p, q;
+          if (!shared_stretch(loops[a].edges[i], loops[b].edges[j], width, reach, p, q)) continue;
+          std::vector<BoundaryEdge> joined = joined_round(loops[a], i, loops[b], j, p, q, reach);
+          if (joined.empty()) continue;
+          loops[a].edges = std::move(joined);
+          loops.erase(loops.begin() + static_cast<std::ptrdiff_t>(b));
+          return true;
+        }
+  return false;
 }
 
 FaceModel build_face_model(RawFace raw) {
@@ -640,13 +636,11 @@ FaceModel build_face_model(RawFace raw) {
     }
     face.area += areas[li];
   }
-  if (face.loops.size() > 1) {
-    const std::size_t loops = face.loops.size();
-    splice_loops_along_shared_stretches(face.loops, std::max(tolerance, kSliverWidth * size));
-    if (face.loops.size() != loops) {
-      face.area = 0.0;  // less the slivers
-      for (const Loop& loop : face.loops) face.area += signed_area(loop);
-    }
+  bool spliced = false;
+  while (splice_one_shared_stretch(face.loops, std::max(tolerance, kSliverWidth * size))) spliced = true;
+  if (spliced) {
+    face.area = 0.0;  // less the slivers
+    for (const Loop& loop : face.loops) face.area += signed_area(loop);
   }
   std::vector<std::vector<Vec2>> polylines;
   double spread = 0.0;  // area of the triangle fans: zero only if every loop is collinear

@@ -3109,17 +3109,13 @@ Decomposition whole_face_block(const FaceModel& face) {
   if (corners > 6) throw refuse("it has " + std::to_string(corners) + " corners (a polygon block takes 6 at most)");
   BlockRing ring;
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    OutlinePiece piece;
-    piece.loop = 0;
-    piece.edge = static_cast<int>(e);
-    piece.t_from = edges[e].t_start;
-    piece.t_to = edges[e].t_end;
-    piece.points = {edges[e].start};
-    for (int k = 1; k < kWholeFaceEdgeSamples; ++k)
-      piece.points.push_back(
-          edge_point(edges[e], piece.t_from + (piece.t_to - piece.t_from) * k / kWholeFaceEdgeSamples).p);
-    piece.points.push_back(edges[e].end);
-    ring.pieces.push_back(std::move(piece));
+    OutlinePiece edge;  // the whole edge, its ends the loop's vertices
+    edge.loop = 0;
+    edge.edge = static_cast<int>(e);
+    edge.t_from = edges[e].t_start;
+    edge.t_to = edges[e].t_end;
+    edge.points = {edges[e].start, edges[e].end};
+    ring.pieces.push_back(piece_part(face, edge, edge.t_from, edge.t_to, kWholeFaceEdgeSamples));
     ring.start_type.push_back(type[e]);
   }
   Decomposition d;
