@@ -728,7 +728,7 @@ class Smoother {
         node.t_start = mesh_.places[n].t;
         if (!may_slide_to(node.bound, node.t_start)) continue;
       }
-      spread.add(node);
+      spread.free.push_back(node);
     }
     if (spread.free.empty()) return false;
     spread.finish_setup();
@@ -776,8 +776,6 @@ class Smoother {
     int best_step = 0;  // and its step
 
     Spread(Smoother& s, double worst) : smoother(s), scale(worst), best(worst) {}
-
-    void add(const Free& node) { free.push_back(node); }
 
     // The quads, their sides' floors and the variables' units.
     void finish_setup() {
