@@ -17,8 +17,8 @@
 namespace mm {
 namespace {
 
-using test::face;
 using test::arc;
+using test::face;
 using test::full_circle;
 using test::line;
 using test::polygon;
@@ -405,6 +405,42 @@ TEST(Decomposition, TilesRandomFacesOrSaysWhyNot) {
   EXPECT_EQ(flagged, 0);
   std::cout << checked << " faces: " << self_check_errors << " self-check errors, " << flagged
             << " flagged as not fully decomposed, " << fallbacks << " decomposed by a fallback\n";
+}
+
+// Two rows of three holes: between four of them the medial axis meets in a
+// junction with a k = +1 switch on each side of it, which merge into a
+// k = +2 that no split resolves. Each member was fixed where it was: two
+// valence-5 nodes with a thin rhombus of elements between them. Fixed at the
+// junction they surround, they are one valence-6 node there, its six
+// elements meeting at about 60 degrees.
+TEST(Decomposition, TwoSwitchesMergedRoundAJunctionAreFixedThereAsOneNode) {
+  std::vector<std::vector<BoundaryEdge>> loops{polygon({{-44, -31.75}, {44, -31.75}, {44, 31.75}, {-44, 31.75}})};
+  for (const double x : {-20.0, 0.0, 20.0})
+    for (const double y : {-25.4, 25.4}) loops.push_back({full_circle({x, y}, 3.38, -1)});
+  const FaceModel f = face(loops);
+  const Result r = run(f);
+  EXPECT_TRUE(test::decomposition_problems(f, r.flow, r.d).empty());
+  std::vector<Vec2> gathered;
+  for (const DecomposedSingularity& s : r.d.singularities) {
+    if (s.k == 2 && s.fixed && s.members.size() == 2) gathered.push_back(s.p);
+  }
+  ASSERT_EQ(gathered.size(), 2u);
+  std::sort(gathered.begin(), gathered.end(), [](Vec2 a, Vec2 b) { return a.x < b.x; });
+  EXPECT_NEAR(distance(gathered[0], {-10, 0}), 0.0, 1e-6);
+  EXPECT_NEAR(distance(gathered[1], {10, 0}), 0.0, 1e-6);
+
+  PipelineOptions options;
+  options.meshing.size = 0.01 * f.size;
+  const MeshedFace m = mesh_face(f, options);
+  EXPECT_TRUE(test::mesh_problems(f, m.blocks.mesh, options.meshing.size).empty());
+  int valence_six = 0;
+  for (const IrregularNode& node : m.quality.irregular_interior) {
+    if (node.elements != 6) continue;
+    ++valence_six;
+    EXPECT_LT(std::min(distance(node.p, {-10, 0}), distance(node.p, {10, 0})), 2 * options.meshing.size);
+  }
+  EXPECT_EQ(valence_six, 2);
+  EXPECT_GT(m.quality.min_scaled_jacobian, 0.75);
 }
 
 }  // namespace

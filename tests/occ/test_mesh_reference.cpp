@@ -153,6 +153,24 @@ TEST(MeshReference, ALatticeShearedOverSeveralRowsIsSpreadByMovingItsNodesTogeth
   }
 }
 
+// trimesh_featuretype_23, two rows of four holes: between four holes two
+// k = +1 switches either side of the medial junction merge into a k = +2
+// that no split resolves. Fixed where they were, they were two valence-5
+// nodes with a rhombus of elements between them (0.522 at 0.01 of the
+// diagonal); fixed at the junction they surround, one valence-6 node there.
+TEST(MeshReference, AMergedPairRoundAJunctionOfAHolePatternIsOneNodeThere) {
+  const std::string path = test::shared_dir() + "/realcad/faces/trimesh_featuretype_23.brep";
+  const FaceModel face = read_face_models(path, {}).front();
+  PipelineOptions options;
+  options.meshing.size = 0.01 * face.size;
+  const MeshedFace m = mesh_face(face, options);
+  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+  const auto valence_six = std::count_if(m.quality.irregular_interior.begin(), m.quality.irregular_interior.end(),
+                                         [](const IrregularNode& n) { return n.elements == 6; });
+  EXPECT_GE(valence_six, 2);
+  EXPECT_GT(m.quality.min_scaled_jacobian, 0.8);
+}
+
 // trimesh_featuretype_50 at a fifth and a tenth of the default size: its
 // bottom fillet's k = -1, fixed on the arc, was a convex corner in the
 // fillet's middle (one element of nearly 180 degrees: 0.26 and 0.14, where

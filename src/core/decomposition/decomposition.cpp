@@ -487,13 +487,20 @@ bool make_submappable(const FaceModel& face, Block& b, double tol, bool follow_t
 class Decomposer {
  public:
   Decomposer(const FaceModel& face, const MedialAxis& axis, const MeshFlow& flow, const DecompositionOptions& options)
-      : face_(face), axis_(axis), flow_(flow), options_(options), index_(face), tol_(1e-9 * face.size) {
+      : face_(face),
+        axis_(axis),
+        flow_(flow),
+        points_(flow.points),
+        options_(options),
+        index_(face),
+        tol_(1e-9 * face.size) {
     for (std::size_t i = 0; i < face.corners.size(); ++i) {
       corner_of_[{face.corners[i].loop, face.corners[i].vertex}] = static_cast<int>(i);
     }
     if (flow.points.size() != axis.edges.size()) throw std::runtime_error(face.name + ": mesh flow has no point flow");
     contract_zero_length_edges();
     locate_singularities();
+    located_ = locations_;
     make_units();
     sort_ends();
     find_concave_points();
@@ -557,6 +564,7 @@ class Decomposer {
     // A group of net k = 0 acts as a regular node only while no cut parts
     // its members; one that gets parted is taken apart and the process redone.
     for (;;) {
+      if (gathered_) points_ = flow_.points, locations_ = located_, gathered_ = false;
       cuts_.clear();
       vertex_cuts_.clear();
       ++version_;
@@ -883,7 +891,7 @@ class Decomposer {
     (on_left ? cp.point.right : cp.point.left) = other;
     cp.s = project(best_edge, cp.point.p);
     cp.corner_on_left = on_left;
-    cp.flow = flow_.points[best_edge][best_f < 0.5 ? best_i : best_i + 1];
+    cp.flow = points_[best_edge][best_f < 0.5 ? best_i : best_i + 1];
     (on_left ? cp.flow.left_corner : cp.flow.right_corner) = ci;
     (on_left ? cp.flow.left_arm : cp.flow.right_arm) = arm;
     const double n = point_count(best_edge) - 1;
@@ -913,7 +921,7 @@ class Decomposer {
     c.edge = e;
     c.s = c.origin = i;
     c.point = axis_.edges[e].points[i];
-    c.behind = c.ahead = flow_.points[e][i];
+    c.behind = c.ahead = points_[e][i];
     c.reason = reason;
     refine(c);
     add_edge_cut(c);
@@ -1025,8 +1033,8 @@ class Decomposer {
     // the corner's radius perpendicular to an edge the adjusted direction
     // jumps there, and the flow may switch right at the split.
     const int i = std::clamp(static_cast<int>(std::floor(cp.s)), 0, point_count(cp.edge) - 2);
-    c.behind = flow_.points[cp.edge][i];
-    c.ahead = flow_.points[cp.edge][i + 1];
+    c.behind = points_[cp.edge][i];
+    c.ahead = points_[cp.edge][i + 1];
     for (PointFlow* f : {&c.behind, &c.ahead}) {
       (cp.corner_on_left ? f->left_corner : f->right_corner) = cp.corner;
       (cp.corner_on_left ? f->left_arm : f->right_arm) = cp.arm;
@@ -1102,8 +1110,11 @@ class Decomposer {
 
   void fix(int u) {
     const bool marks_current = marks_version_ == version_;
+    std::vector<int> marked_edges;  // where the members' marks are, before any gathering moves them
+    for (const int m : units_[u].members) marked_edges.push_back(locations_[m].edge);
     units_[u].fixed = true;
     ++version_;
+    gather_at_junction(u);
     for (int m : units_[u].members) {
       const Location& loc = locations_[m];
       if (loc.vertex >= 0 &&
@@ -1127,8 +1138,8 @@ class Decomposer {
       c.edge = loc.edge;
       c.s = loc.s;
       c.point = fix_point(loc.edge, i, flow_.singularities[m].p, flow_.singularities[m].r);
-      c.behind = flow_.points[loc.edge][i];
-      c.ahead = flow_.points[loc.edge][i + 1];
+      c.behind = points_[loc.edge][i];
+      c.ahead = points_[loc.edge][i + 1];
       c.reason = SplitReason::Fix;
       ++version_;
       // Members a hair's breadth apart (a switch beside the junction-like
@@ -1146,8 +1157,7 @@ class Decomposer {
       if (marks_current) mark_edge_cut(c);
     }
     if (marks_current) {  // the unit no longer floats: its members are no feature
-      for (int m : units_[u].members) {
-        const int e = locations_[m].edge;
+      for (const int e : marked_edges) {
         if (e < 0) continue;
         marks_[e].erase(
             std::remove_if(marks_[e].begin(), marks_[e].end(), [&](const Mark& mark) { return mark.unit == u; }),
@@ -1155,6 +1165,98 @@ class Decomposer {
       }
       marks_version_ = version_;
     }
+  }
+
+  // A merged unit whose members sit on the edges round one junction, with
+  // nothing between them and it, is fixed at the junction: one node of
+  // valence 4 + k, as the merge meant, rather than its members' nodes apart
+  // with a thin block wedged between their cuts (four holes in a rectangle:
+  // two k = +1 switches either side of the junction become one k = +2
+  // node whose six elements meet at about 60 degrees). Between each member
+  // and the junction the flow becomes the member's far side's, as though
+  // the switch were at the junction; only where the junction's sectors
+  // then get 4 + k elements between them, at least one each.
+  struct Gathering {
+    int vertex = -1;
+    std::map<int, int> end_q;  // per edge whose member moves: the q it gets at the junction
+  };
+
+  std::optional<Gathering> junction_gathering(int u) const {
+    const std::vector<int>& members = units_[u].members;
+    if (members.size() < 2) return std::nullopt;
+    std::vector<int> candidates;
+    for (const int m : members) {
+      const Location& loc = locations_[m];
+      std::vector<int> here;
+      if (loc.vertex >= 0) {
+        here = {loc.vertex};
+      } else if (!closed(loc.edge)) {
+        here = {end_vertex(loc.edge, true), end_vertex(loc.edge, false)};
+      }
+      if (m == members.front()) candidates = here;
+      candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                      [&](int v) { return std::find(here.begin(), here.end(), v) == here.end(); }),
+                       candidates.end());
+    }
+    if (candidates.size() != 1) return std::nullopt;
+    Gathering g;
+    g.vertex = candidates.front();
+    const int v = g.vertex;
+    if (axis_.vertices[v].kind != MedialVertexKind::Junction || ends_[v].size() < 3 || vertex_cut(v))
+      return std::nullopt;
+    if (vertex_member_[v] >= 0 && unit_of_[vertex_member_[v]] != u) return std::nullopt;
+    for (const int m : members) {
+      const Location& loc = locations_[m];
+      if (loc.vertex >= 0) continue;
+      const int e = loc.edge;
+      const bool at_start = end_vertex(e, true) == v;
+      if (at_start == (end_vertex(e, false) == v) || g.end_q.count(e)) return std::nullopt;
+      const auto between = [&](double s) { return at_start ? s < loc.s + 1e-12 : s > loc.s - 1e-12; };
+      for (std::size_t other = 0; other < locations_.size(); ++other) {
+        if (static_cast<int>(other) != m && locations_[other].edge == e && between(locations_[other].s))
+          return std::nullopt;
+      }
+      for (const ConcavePoint& cp : concave_) {
+        if (cp.edge == e && between(cp.s)) return std::nullopt;
+      }
+      for (const Cut& c : cuts_) {
+        if (c.edge == e && between(c.s)) return std::nullopt;
+      }
+      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(e) - 2);
+      g.end_q[e] = at_start ? points_[e][i + 1].q : points_[e][i].q;
+    }
+    int elements = 0;
+    for (const End& end : ends_[v]) {
+      const int bend = 2 - gathered_away_q(g, end.edge, end.at_start);
+      if (bend < 1 || bend > 3) return std::nullopt;  // every sector a corner it can mesh
+      elements += bend;
+    }
+    if (elements != 4 + units_[u].k) return std::nullopt;
+    return g;
+  }
+
+  // away_q at the junction once the gathering's members are there.
+  int gathered_away_q(const Gathering& g, int e, bool at_start) const {
+    const auto it = g.end_q.find(e);
+    if (it == g.end_q.end()) return away_q(e, at_start);
+    return at_start ? it->second : -it->second;
+  }
+
+  void gather_at_junction(int u) {
+    const std::optional<Gathering> g = junction_gathering(u);
+    if (!g) return;
+    for (const auto& [e, q] : g->end_q) {
+      const bool at_start = end_vertex(e, true) == g->vertex;
+      const int m = *std::find_if(units_[u].members.begin(), units_[u].members.end(),
+                                  [&, e = e](int x) { return locations_[x].edge == e; });
+      const int i = std::clamp(static_cast<int>(std::floor(locations_[m].s)), 0, point_count(e) - 2);
+      std::vector<PointFlow>& flow = points_[e];
+      for (int j = at_start ? 0 : i + 1; j < (at_start ? i + 1 : point_count(e)); ++j) flow[j].q = q;
+    }
+    for (const int m : units_[u].members) locations_[m] = Location{-1, 0.0, g->vertex};
+    gathered_ = true;
+    notes_.push_back("fixed a k = " + std::to_string(units_[u].k) +
+                     " singularity at the junction its members surround");
   }
 
   // A fix cut on the same edge whose split is the new one's to the sliver
@@ -1384,7 +1486,7 @@ class Decomposer {
       for (int i = st.forward() ? lo : hi; i >= lo && i <= hi; i += step) {
         at += arc(st.edge, at_s, i);
         at_s = i;
-        const PointFlow& pf = flow_.points[st.edge][i];
+        const PointFlow& pf = points_[st.edge][i];
         if (pf.left_corner >= 0 || pf.right_corner >= 0) continue;
         if (distance(pts[i].left.point, pts[i].right.point) < 1e-6 * face_.size) continue;
         if (inside_a_group(pts[i].p)) continue;
@@ -1573,7 +1675,21 @@ class Decomposer {
   // exploring unit a straight or convex corner there.
   bool neighbour_fix_convex(const Neighbour& nb) const {
     const Unit& v = units_[nb.id];
-    if (v.members.size() != 1) return false;
+    if (v.members.size() != 1) {
+      const std::optional<Gathering> g = junction_gathering(nb.id);
+      if (!g) return false;
+      // The exploring unit's block takes the sector of the edge its path reaches the junction by.
+      int sector = nb.path.back().edge;
+      bool at_start = !nb.path.back().forward();
+      for (const Step& st : nb.path) {
+        const bool toward_start = !st.forward();
+        if (st.to == (toward_start ? 0.0 : point_count(st.edge) - 1.0) &&
+            end_vertex(st.edge, toward_start) == g->vertex)
+          sector = st.edge, at_start = toward_start;
+      }
+      const int type = 2 - gathered_away_q(*g, sector, at_start);
+      return type >= 1 && type <= 2;
+    }
     const Location& loc = locations_[v.members.front()];
     const Step& last = nb.path.back();
     int type = 0;
@@ -1582,13 +1698,13 @@ class Decomposer {
       type = 2 - away_q(last.edge, at_start);
     } else {
       const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
-      type = last.forward() ? 2 + flow_.points[loc.edge][i].q : 2 - flow_.points[loc.edge][i + 1].q;
+      type = last.forward() ? 2 + points_[loc.edge][i].q : 2 - points_[loc.edge][i + 1].q;
     }
     return type >= 1 && type <= 2;
   }
 
   // q of an edge at one of its ends, pointing away from that end's vertex.
-  int away_q(int e, bool at_start) const { return at_start ? flow_.points[e].front().q : -flow_.points[e].back().q; }
+  int away_q(int e, bool at_start) const { return at_start ? points_[e].front().q : -points_[e].back().q; }
 
   // ------------------------------------------------------- regions and walks
 
@@ -1945,7 +2061,7 @@ class Decomposer {
 
   // A fixed junction, entered along one of its edges: round that edge's sector.
   Item vertex_item(int v, int e, bool at_start) const {
-    const PointFlow& f = at_start ? flow_.points[e].front() : flow_.points[e].back();
+    const PointFlow& f = at_start ? points_[e].front() : points_[e].back();
     // Arriving at the start walks backwards (left side first), at the end forwards.
     const bool fwd = !at_start;
     Item it;
@@ -2187,7 +2303,7 @@ class Decomposer {
         const double lo = interval_start(p, static_cast<int>(e), i), hi = interval_end(p, static_cast<int>(e), i);
         Candidate c{{1 << 20, 0, 0.0}, static_cast<int>(e), i, -1};
         for (int k = static_cast<int>(std::floor(lo)) + 1; k <= static_cast<int>(std::ceil(hi)) - 1; ++k) {
-          const PointFlow& pf = flow_.points[e][k];
+          const PointFlow& pf = points_[e][k];
           const MedialPoint& mp = axis_.edges[e].points[k];
           if (inside_a_group(mp.p) || distance(mp.left.point, mp.right.point) < 1e-6 * face_.size) continue;
           const bool smooth = pf.left_corner < 0 && pf.right_corner < 0;
@@ -2487,7 +2603,13 @@ class Decomposer {
     for (std::size_t u = 0; u < units_.size(); ++u) {
       if (units_[u].k == 0) continue;  // a regular node for the mesh
       if (units_[u].fixed) {
-        d.singularities.push_back({units_[u].p, units_[u].k, true, units_[u].members});
+        // Members gathered at a junction are its node.
+        const Location& first = locations_[units_[u].members.front()];
+        const bool gathered = units_[u].members.size() > 1 && first.vertex >= 0 &&
+                              std::all_of(units_[u].members.begin(), units_[u].members.end(),
+                                          [&](int m) { return locations_[m].vertex == first.vertex; });
+        const Vec2 p = gathered ? axis_.vertices[first.vertex].p : units_[u].p;
+        d.singularities.push_back({p, units_[u].k, true, units_[u].members});
       } else {
         floating_in[component_of(p, units_[u].members.front())].push_back(static_cast<int>(u));
       }
@@ -3041,6 +3163,9 @@ class Decomposer {
   const FaceModel& face_;
   const MedialAxis& axis_;
   const MeshFlow& flow_;
+  // The flow's point flows and the singularities' places, as this attempt
+  // has them: fixing a merged unit at a junction moves its members there.
+  std::vector<std::vector<PointFlow>> points_;
   DecompositionOptions options_;
   BoundaryIndex index_;
   double tol_;
@@ -3050,6 +3175,8 @@ class Decomposer {
   std::vector<int> rep_;             // per medial vertex, the one it stands with (coincident junctions)
   std::vector<bool> contracted_;     // per medial edge: of no length, its ends one vertex
   std::vector<Location> locations_;
+  std::vector<Location> located_;  // as found, before any attempt moved them
+  bool gathered_ = false;          // whether points_ and locations_ differ from the flow's
   std::vector<Unit> units_;
   std::vector<int> unit_of_;
   std::vector<std::vector<End>> ends_;
