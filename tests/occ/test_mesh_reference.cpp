@@ -171,6 +171,41 @@ TEST(MeshReference, AMergedPairRoundAJunctionOfAHolePatternIsOneNodeThere) {
   EXPECT_GT(m.quality.min_scaled_jacobian, 0.8);
 }
 
+// trimesh_boxsides_179: each of its two slots is run round by one
+// submapped block, held to the rest by a split from one corner, whose
+// lattice converges on the slot's corners (0.414 at 0.01 of the diagonal,
+// where Gmsh's Frontal-Delaunay with Blossom gets 0.532). A poor mesh with
+// such a hole is made again with the hole framed by the splits along its
+// corners' arms, and the better kept; trimesh_boxsides_51's two small slots
+// are run round too, but its mesh is good and stays as it was.
+TEST(MeshReference, APoorMeshRoundAWrappedSlotIsMadeAgainWithTheSlotFramed) {
+  {
+    const FaceModel face =
+        read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_179.brep", {}).front();
+    PipelineOptions options;
+    options.meshing.size = 0.01 * face.size;
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.6);
+    const auto framed = std::count_if(m.decomposition.splits.begin(), m.decomposition.splits.end(),
+                                      [](const Split& s) { return s.reason == SplitReason::ConcaveCorner; });
+    EXPECT_GE(framed, 8);  // two arms at each of the 8 slot corners, some shared
+    EXPECT_TRUE(m.decomposition.wrapped_holes.empty());
+    EXPECT_TRUE(std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(),
+                            [](const std::string& n) { return n.find("framed") != std::string::npos; }));
+  }
+  {
+    const FaceModel face = read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_51.brep", {}).front();
+    PipelineOptions options;
+    options.meshing.size = 0.05 * face.size;  // the default size
+    const MeshedFace m = mesh_face(face, options);
+    EXPECT_EQ(m.decomposition.wrapped_holes.size(), 2u);
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.75);
+    EXPECT_TRUE(std::none_of(m.blocks.notes.begin(), m.blocks.notes.end(),
+                             [](const std::string& n) { return n.find("framed") != std::string::npos; }));
+  }
+}
+
 // trimesh_featuretype_50 at a fifth and a tenth of the default size: its
 // bottom fillet's k = -1, fixed on the arc, was a convex corner in the
 // fillet's middle (one element of nearly 180 degrees: 0.26 and 0.14, where

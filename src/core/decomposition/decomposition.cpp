@@ -579,8 +579,8 @@ class Decomposer {
       }
       // Splits along every arm of every concave corner, when asked, come
       // first: the process then resolves singularities with what is left.
-      if (options_.split_concave_corners)
-        for (const ConcavePoint& cp : concave_) cut_concave(cp);
+      for (const ConcavePoint& cp : concave_)
+        if (options_.split_concave_corners || framed_.count(face_.corners[cp.corner].loop)) cut_concave(cp);
       resolve_neighbours();
       fix_unresolved();
       std::vector<Outline> outlines;
@@ -591,8 +591,39 @@ class Decomposer {
         if (!fix_invalid_polygons(outlines) || round > static_cast<int>(units_.size())) break;
       }
       connect_regions();
-      if (!take_apart_parted_groups()) return finish(version_ == walked ? outlines : walk_outlines());
+      if (take_apart_parted_groups()) continue;
+      Decomposition d = finish(version_ == walked ? outlines : walk_outlines());
+      d.wrapped_holes = wrapped_holes(d);
+      if (!options_.frame_wrapped_holes || d.wrapped_holes.empty()) return d;
+      framed_.insert(d.wrapped_holes.begin(), d.wrapped_holes.end());
     }
+  }
+
+  // Holes with a reflex corner whose every corner lies on one submapped
+  // block's outline, not framed yet: the block runs round the hole, held
+  // to the rest by a split or two.
+  std::vector<int> wrapped_holes(const Decomposition& d) const {
+    std::vector<int> wrapped;
+    for (int loop = 1; loop < static_cast<int>(face_.loops.size()); ++loop) {
+      if (framed_.count(loop)) continue;
+      std::vector<Vec2> corners;
+      bool reflex = false;
+      for (const Corner& c : face_.corners) {
+        if (c.loop != loop) continue;
+        corners.push_back(c.position);
+        reflex = reflex || c.nc >= 3;
+      }
+      const auto on_outline = [&](const Block& b, Vec2 p) {
+        return std::any_of(b.corners.begin(), b.corners.end(),
+                           [&](const BlockCorner& c) { return distance(c.p, p) <= tol_; });
+      };
+      if (reflex && std::any_of(d.blocks.begin(), d.blocks.end(), [&](const Block& b) {
+            return b.kind == BlockKind::Submap &&
+                   std::all_of(corners.begin(), corners.end(), [&](Vec2 p) { return on_outline(b, p); });
+          }))
+        wrapped.push_back(loop);
+    }
+    return wrapped;
   }
 
   // ---------------------------------------------------------------- set-up
@@ -3195,6 +3226,7 @@ class Decomposer {
   double widest_pair_ = 0.0;                  // the largest reach
   std::vector<int> vertex_member_;            // per medial vertex, the flow singularity there or -1
   std::set<int> taken_apart_;                 // first members of groups taken apart
+  std::set<int> framed_;                      // holes split along their corners' arms (frame_wrapped_holes)
   std::map<int, int> boundary_fixed_;         // finite-contact vertex -> convex corners put on its arc
   std::vector<int> split_owner_;              // the cut each split belongs to
   std::set<std::pair<int, long>> withdrawn_;  // (edge, position x 1e6) of withdrawn cuts, never placed again

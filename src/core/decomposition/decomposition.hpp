@@ -22,6 +22,10 @@ struct DecompositionOptions {
   // singularity needs it: smaller blocks, fewer reflex corners in any one
   // (for regions whose submapped placement folds).
   bool split_concave_corners = false;
+  // Split along the arms of the corners of every hole that one submapped
+  // block runs round (Decomposition::wrapped_holes): the splits frame the
+  // hole as a grid frames a rectangular hole (the pipeline's retry of a poor mesh).
+  bool frame_wrapped_holes = false;
   // Where the corner rule leaves a side of a submapped block more than 135
   // degrees off its logical direction, type the corners again following the
   // outline's turning (else the lattice folds; off: a fallback).
@@ -104,7 +108,11 @@ struct Decomposition {
   std::vector<Split> splits;
   std::vector<Block> blocks;
   std::vector<DecomposedSingularity> singularities;
-  bool fallback = false;           // some singularity could not be given its polygon
+  bool fallback = false;  // some singularity could not be given its polygon
+  // Holes with reflex corners that one submapped block runs round, every
+  // corner of the hole on its outline (loop indices): the block's lattice
+  // wraps the hole and converges on its corners.
+  std::vector<int> wrapped_holes;
   std::vector<std::string> notes;  // what the process had to do, for the user
 };
 

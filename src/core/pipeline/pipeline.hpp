@@ -18,6 +18,7 @@ struct PipelineOptions {
   bool submap_corners_follow_turning = true;  // DecompositionOptions::submap_corners_follow_turning
   bool orthogonal_joins = true;               // DecompositionOptions::orthogonal_joins
   bool whole_face = false;                    // DecompositionOptions::whole_face
+  bool frame_wrapped_holes = false;           // DecompositionOptions::frame_wrapped_holes
 };
 
 struct MeshedFace {
@@ -37,7 +38,10 @@ struct MeshedFace {
 // whole_face). A mesh far coarser than asked
 // (BlockMesh::coarser_than_asked) is made again with the singularities merged
 // within a twentieth of the face's diagonal, as at the default size, and
-// kept if it no longer is. A note in blocks.notes says when a fallback was used.
+// kept if it no longer is. A mesh whose worst element is under 0.5 with a
+// hole one submapped block runs round (Decomposition::wrapped_holes) is made
+// again with such holes framed, and the better kept. A note in blocks.notes
+// says when a fallback or a retry was used.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // The face as the medial axis took it, its axis and its mesh flow, as
