@@ -194,6 +194,9 @@ TEST(MeshReference, APoorMeshRoundAWrappedSlotIsMadeAgainWithTheSlotFramed) {
     EXPECT_TRUE(m.decomposition.wrapped_holes.empty());
     EXPECT_TRUE(std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(),
                             [](const std::string& n) { return n.find("framed") != std::string::npos; }));
+    // Meshed as one of a set of faces, the same.
+    const MeshedFaces together = mesh_faces({face}, options);
+    EXPECT_NEAR(together.quality.min_scaled_jacobian, m.quality.min_scaled_jacobian, 1e-9);
   }
   {
     const FaceModel face = read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_51.brep", {}).front();

@@ -82,7 +82,8 @@ struct MeshedFaces {
 };
 
 // Throws as mesh_face, and falls back as it does (the coarse retry merging
-// within a twentieth of the smallest face's diagonal); SelfCheckError naming
+// within a twentieth of the smallest face's diagonal; the retry of a poor
+// mesh when any face's is poor and has a wrapped hole); SelfCheckError naming
 // the faces when the merged mesh fails its checks (merge_face_meshes),
 // InputError for no faces.
 MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOptions& options);
