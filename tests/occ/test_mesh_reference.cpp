@@ -23,6 +23,20 @@ MeshedFace meshed(const FaceModel& face, double size_fraction = 0.05, int order 
   return mesh_face(face, options);
 }
 
+// A face of ../shared (name from there, "/realcad/faces/x.brep"), meshed at
+// size_fraction of its diagonal, that passed every mesh check.
+MeshedFace checked_shared_mesh(const std::string& name, double size_fraction) {
+  const FaceModel face = read_face_models(test::shared_dir() + name, {}).front();
+  MeshedFace m = meshed(face, size_fraction);
+  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, size_fraction * face.size).empty()) << name;
+  return m;
+}
+
+bool has_note(const MeshedFace& m, const std::string& part) {
+  return std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(),
+                     [&](const std::string& n) { return n.find(part) != std::string::npos; });
+}
+
 std::vector<int> irregular_valences(const QualityReport& q) {
   std::vector<int> valences;
   for (const IrregularNode& n : q.irregular_interior) valences.push_back(n.elements);
@@ -124,14 +138,9 @@ TEST(MeshReference, KeyedGearsMeshAsOneRing) {
 // merging fallback, 2.5 s). Facing sides with far more lines across than
 // their distance asks are solved again with the excess costed.
 TEST(MeshReference, SubmapLinesDoNotCrowdThroughANarrowGapWhenFine) {
-  const std::string path = test::shared_dir() + "/realcad/faces/trimesh_boxsides_179.brep";
-  const FaceModel face = read_face_models(path, {}).front();
-  PipelineOptions options;
-  options.meshing.size = 0.005 * face.size;
-  const MeshedFace m = mesh_face(face, options);
-  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+  const MeshedFace m = checked_shared_mesh("/realcad/faces/trimesh_boxsides_179.brep", 0.005);
   // No fallback (its slots framed on the retry of a poor mesh is no failure).
-  for (const std::string& note : m.blocks.notes) EXPECT_EQ(note.find("self-check"), std::string::npos) << note;
+  EXPECT_FALSE(has_note(m, "self-check"));
   EXPECT_GT(m.quality.min_scaled_jacobian, 0.25);
 }
 
@@ -144,14 +153,8 @@ TEST(MeshReference, SubmapLinesDoNotCrowdThroughANarrowGapWhenFine) {
 TEST(MeshReference, ALatticeShearedOverSeveralRowsIsSpreadByMovingItsNodesTogether) {
   const std::pair<const char*, double> cases[] = {{"/realcad/faces/occt_face2_1.brep", 0.007},
                                                   {"/geometry/bracket.brep", 0.005}};
-  for (const auto& [name, size_factor] : cases) {
-    const FaceModel face = read_face_models(test::shared_dir() + name, {}).front();
-    PipelineOptions options;
-    options.meshing.size = size_factor * face.size;
-    const MeshedFace m = mesh_face(face, options);
-    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty()) << name;
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.68) << name;
-  }
+  for (const auto& [name, size_factor] : cases)
+    EXPECT_GT(checked_shared_mesh(name, size_factor).quality.min_scaled_jacobian, 0.68) << name;
 }
 
 // trimesh_featuretype_23, two rows of four holes: between four holes two
@@ -160,12 +163,7 @@ TEST(MeshReference, ALatticeShearedOverSeveralRowsIsSpreadByMovingItsNodesTogeth
 // nodes with a rhombus of elements between them (0.522 at 0.01 of the
 // diagonal); fixed at the junction they surround, one valence-6 node there.
 TEST(MeshReference, AMergedPairRoundAJunctionOfAHolePatternIsOneNodeThere) {
-  const std::string path = test::shared_dir() + "/realcad/faces/trimesh_featuretype_23.brep";
-  const FaceModel face = read_face_models(path, {}).front();
-  PipelineOptions options;
-  options.meshing.size = 0.01 * face.size;
-  const MeshedFace m = mesh_face(face, options);
-  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
+  const MeshedFace m = checked_shared_mesh("/realcad/faces/trimesh_featuretype_23.brep", 0.01);
   const auto valence_six = std::count_if(m.quality.irregular_interior.begin(), m.quality.irregular_interior.end(),
                                          [](const IrregularNode& n) { return n.elements == 6; });
   EXPECT_GE(valence_six, 2);
@@ -180,34 +178,23 @@ TEST(MeshReference, AMergedPairRoundAJunctionOfAHolePatternIsOneNodeThere) {
 // corners' arms, and the better kept; trimesh_boxsides_51's two small slots
 // are run round too, but its mesh is good and stays as it was.
 TEST(MeshReference, APoorMeshRoundAWrappedSlotIsMadeAgainWithTheSlotFramed) {
-  {
-    const FaceModel face =
-        read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_179.brep", {}).front();
-    PipelineOptions options;
-    options.meshing.size = 0.01 * face.size;
-    const MeshedFace m = mesh_face(face, options);
-    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty());
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.6);
-    const auto framed = std::count_if(m.decomposition.splits.begin(), m.decomposition.splits.end(),
-                                      [](const Split& s) { return s.reason == SplitReason::ConcaveCorner; });
-    EXPECT_GE(framed, 8);  // two arms at each of the 8 slot corners, some shared
-    EXPECT_TRUE(m.decomposition.wrapped_holes.empty());
-    EXPECT_TRUE(std::any_of(m.blocks.notes.begin(), m.blocks.notes.end(),
-                            [](const std::string& n) { return n.find("framed") != std::string::npos; }));
-    // Meshed as one of a set of faces, the same.
-    const MeshedFaces together = mesh_faces({face}, options);
-    EXPECT_NEAR(together.quality.min_scaled_jacobian, m.quality.min_scaled_jacobian, 1e-9);
-  }
-  {
-    const FaceModel face = read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_51.brep", {}).front();
-    PipelineOptions options;
-    options.meshing.size = 0.05 * face.size;  // the default size
-    const MeshedFace m = mesh_face(face, options);
-    EXPECT_EQ(m.decomposition.wrapped_holes.size(), 2u);
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.75);
-    EXPECT_TRUE(std::none_of(m.blocks.notes.begin(), m.blocks.notes.end(),
-                             [](const std::string& n) { return n.find("framed") != std::string::npos; }));
-  }
+  const MeshedFace m = checked_shared_mesh("/realcad/faces/trimesh_boxsides_179.brep", 0.01);
+  EXPECT_GT(m.quality.min_scaled_jacobian, 0.6);
+  const auto framed = std::count_if(m.decomposition.splits.begin(), m.decomposition.splits.end(),
+                                    [](const Split& s) { return s.reason == SplitReason::ConcaveCorner; });
+  EXPECT_GE(framed, 8);  // two arms at each of the 8 slot corners, some shared
+  EXPECT_TRUE(m.decomposition.wrapped_holes.empty());
+  EXPECT_TRUE(has_note(m, "framed"));
+  // Meshed as one of a set of faces, the same.
+  const FaceModel face = read_face_models(test::shared_dir() + "/realcad/faces/trimesh_boxsides_179.brep", {}).front();
+  PipelineOptions options;
+  options.meshing.size = 0.01 * face.size;
+  EXPECT_NEAR(mesh_faces({face}, options).quality.min_scaled_jacobian, m.quality.min_scaled_jacobian, 1e-9);
+
+  const MeshedFace good = checked_shared_mesh("/realcad/faces/trimesh_boxsides_51.brep", 0.05);
+  EXPECT_EQ(good.decomposition.wrapped_holes.size(), 2u);
+  EXPECT_GT(good.quality.min_scaled_jacobian, 0.75);
+  EXPECT_FALSE(has_note(good, "framed"));
 }
 
 // trimesh_featuretype_50 at a fifth and a tenth of the default size: its
@@ -219,13 +206,8 @@ TEST(MeshReference, APoorMeshRoundAWrappedSlotIsMadeAgainWithTheSlotFramed) {
 // every boundary node has the elements its angle asks, and the elements
 // stay good as they shrink.
 TEST(MeshReference, FilletsAndThreeCorneredBlocksHoldTheirQualityWhenFine) {
-  const std::string path = test::shared_dir() + "/realcad/faces/trimesh_featuretype_50.brep";
-  const FaceModel face = read_face_models(path, {}).front();
   for (const double size_factor : {0.01, 0.005}) {
-    PipelineOptions options;
-    options.meshing.size = size_factor * face.size;
-    const MeshedFace m = mesh_face(face, options);
-    EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, options.meshing.size).empty()) << size_factor;
+    const MeshedFace m = checked_shared_mesh("/realcad/faces/trimesh_featuretype_50.brep", size_factor);
     EXPECT_TRUE(m.quality.irregular_boundary.empty()) << size_factor;
     EXPECT_GT(m.quality.min_scaled_jacobian, 0.75) << size_factor;
   }
