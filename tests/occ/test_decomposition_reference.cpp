@@ -194,6 +194,12 @@ TEST(DecomposeCommand, PrintsBlocksSplitsAndFixedAsJsonAndDrawsThem) {
   EXPECT_EQ(json["splits"].size(), 4u);
   EXPECT_EQ(json["splits"][0]["polyline"].size(), 3u);
   EXPECT_TRUE(json["fixed"].empty());
+  EXPECT_TRUE(json["wrapped_holes"].empty());  // a round hole has no corner
+  // trimesh_boxsides_179's two slots, each run round by one submapped block.
+  const auto slots =
+      test::run_cli("decompose " + test::shared_dir() + "/realcad/faces/trimesh_boxsides_179.brep --json");
+  ASSERT_EQ(slots.exit_code, 0) << slots.err;
+  EXPECT_EQ(nlohmann::json::parse(slots.out)["wrapped_holes"], nlohmann::json::parse("[1, 6]"));
   std::ifstream picture(svg);
   const std::string text((std::istreambuf_iterator<char>(picture)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("<svg"), std::string::npos);
@@ -216,9 +222,10 @@ TEST(DecomposeCommand, MergeOptionsChangeTheEllipse) {
 
 TEST(DecomposeCommand, BadArgumentsExitTwoWithOneLine) {
   const std::string file = test::shared_dir() + "/geometry/square.brep";
-  for (const std::string& args : std::vector<std::string>{"decompose " + file, "decompose " + file + " --json --merge 3",
-                                  "decompose " + file + " --json --merge 0.5 --no-merge",
-                                  "decompose " + file + " --json --blocks out.txt", "decompose /no/such.brep --json"}) {
+  for (const std::string& args :
+       std::vector<std::string>{"decompose " + file, "decompose " + file + " --json --merge 3",
+                                "decompose " + file + " --json --merge 0.5 --no-merge",
+                                "decompose " + file + " --json --blocks out.txt", "decompose /no/such.brep --json"}) {
     const auto r = test::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_NE(r.err.find("medialmesh: "), std::string::npos) << args;

@@ -55,8 +55,9 @@ nlohmann::json decomposition_report_json(const FaceModel& face, const Decomposit
     all.push_back(singularity_json(s));
     if (s.fixed) fixed.push_back(singularity_json(s));
   }
-  return {{"face", face.name}, {"face_area", face.area}, {"blocks", blocks},       {"splits", splits},
-          {"fixed", fixed},    {"singularities", all},   {"fallback", d.fallback}, {"notes", d.notes}};
+  return {{"face", face.name},      {"face_area", face.area}, {"blocks", blocks},
+          {"splits", splits},       {"fixed", fixed},         {"singularities", all},
+          {"fallback", d.fallback}, {"notes", d.notes},       {"wrapped_holes", d.wrapped_holes}};
 }
 
 }  // namespace mm
