@@ -244,12 +244,12 @@ double total_seconds(const StageSeconds& stages) {
 
 // The coarse retry: when `meshed` is far coarser than asked, `make` meshes
 // again with coarse_retry_options, and that result replaces it (its
-// decomposition time in `passed`, the note) if it no longer is. The time of
-// whichever attempt is dropped goes to failed_attempts.
+// decomposition time in `passed`, the note, its settings in `used`) if it no
+// longer is. The time of whichever attempt is dropped goes to failed_attempts.
 template <typename Meshed, typename Make, typename IsCoarse, typename BlockSeconds>
 void remesh_if_coarse(const PipelineOptions& options, const std::vector<const FaceFlow*>& flows, Meshed& meshed,
-                      StageSeconds& passed, std::string& note, StageSeconds& stages, Make make, IsCoarse coarse,
-                      BlockSeconds block_seconds) {
+                      PipelineOptions& used, StageSeconds& passed, std::string& note, StageSeconds& stages, Make make,
+                      IsCoarse coarse, BlockSeconds block_seconds) {
   const std::optional<PipelineOptions> retry = coarse(meshed) ? coarse_retry_options(options, flows) : std::nullopt;
   if (!retry) return;
   const auto t = Clock::now();
@@ -259,6 +259,7 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
     if (!coarse(again)) {
       add_stage(stages, "failed_attempts", total_seconds(passed) + block_seconds(meshed));
       meshed = std::move(again);
+      used = *retry;
       passed = attempt;
       note = coarse_retry_note(options, *retry);
       return;
@@ -269,8 +270,9 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
 }
 
 // The retry of a poor mesh: when its worst element is under kPoorMesh and
-// a hole is run round by one submapped block, `make` meshes again with
-// such holes framed by the splits along their corners' arms, and that
+// a hole is run round by one submapped block, `make` meshes again with the
+// settings it was made with (`used`: those asked for, or the fallback's or
+// coarse retry's) and such holes framed by the splits along their corners' arms, and that
 // result replaces it (its stages in `passed`, the note) if its worst
 // element is better. The block's lattice wraps the hole and converges on
 // its corners (trimesh_boxsides_179's slots: 0.414 at 0.01 of the
@@ -282,12 +284,12 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
 constexpr double kPoorMesh = 0.5;
 
 template <typename Meshed, typename Make, typename Worst, typename Wrapped, typename BlockSeconds>
-void remesh_if_poor(const PipelineOptions& options, Meshed& meshed, StageSeconds& passed, std::string& note,
+void remesh_if_poor(const PipelineOptions& used, Meshed& meshed, StageSeconds& passed, std::string& note,
                     StageSeconds& stages, Make make, Worst worst, Wrapped wrapped, BlockSeconds block_seconds) {
-  if (options.frame_wrapped_holes || options.split_concave_corners || !wrapped(meshed)) return;
+  if (used.frame_wrapped_holes || used.split_concave_corners || !wrapped(meshed)) return;
   const double before = worst(meshed);
   if (before >= kPoorMesh) return;
-  PipelineOptions framed = options;
+  PipelineOptions framed = used;
   framed.frame_wrapped_holes = true;
   const auto t = Clock::now();
   try {
@@ -384,18 +386,20 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
     return Meshed{std::move(decomposition), std::move(blocks)};
   };
   Meshed meshed;
-  StageSeconds passed;  // the stages of the attempt that passed
+  StageSeconds passed;             // the stages of the attempt that passed
+  PipelineOptions used = options;  // its settings
   std::string note = with_fallbacks(options, {&flow}, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
     meshed = make(o, attempt);
     passed = attempt;
+    used = o;
   });
   const auto block_seconds = [](const Meshed& m) { return total_seconds(m.second.stage_seconds); };
   remesh_if_coarse(
-      options, {&flow}, meshed, passed, note, stages, make, [](const Meshed& m) { return m.second.coarser_than_asked; },
-      block_seconds);
+      options, {&flow}, meshed, used, passed, note, stages, make,
+      [](const Meshed& m) { return m.second.coarser_than_asked; }, block_seconds);
   remesh_if_poor(
-      options, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_scaled_jacobian(m.second.mesh); },
+      used, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_scaled_jacobian(m.second.mesh); },
       [](const Meshed& m) { return !m.first.wrapped_holes.empty(); }, block_seconds);
   result.decomposition = std::move(meshed.first);
   result.blocks = std::move(meshed.second);
@@ -430,11 +434,13 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     return m;
   };
   Meshed meshed;
-  StageSeconds passed;  // the decomposition time of the attempt that passed
+  StageSeconds passed;             // the decomposition time of the attempt that passed
+  PipelineOptions used = options;  // its settings
   std::string note = with_fallbacks(options, flow_list, stages, [&](const PipelineOptions& o) {
     StageSeconds attempt;
     meshed = make(o, attempt);
     passed = attempt;
+    used = o;
   });
   const auto block_seconds = [](const Meshed& m) {
     double seconds = 0.0;
@@ -442,14 +448,14 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     return seconds;
   };
   remesh_if_coarse(
-      options, flow_list, meshed, passed, note, stages, make,
+      options, flow_list, meshed, used, passed, note, stages, make,
       [](const Meshed& m) {
         return std::any_of(m.second.faces.begin(), m.second.faces.end(),
                            [](const BlockMesh& f) { return f.coarser_than_asked; });
       },
       block_seconds);
   remesh_if_poor(
-      options, meshed, passed, note, stages, make,
+      used, meshed, passed, note, stages, make,
       [](const Meshed& m) {
         double worst = 1.0;
         for (const BlockMesh& f : m.second.faces) worst = std::min(worst, worst_scaled_jacobian(f.mesh));
