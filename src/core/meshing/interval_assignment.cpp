@@ -710,10 +710,19 @@ BuiltModel build(const IntervalProblem& problem, size_t block_limit, bool ratio,
       case BlockTemplate::Disc: {
         const int a = model.add_integer(1.0);
         const int bb = model.add_integer(1.0);
+        // n = 2 half, half = a + b: with the half count its own integer the
+        // relaxation's odd n (an odd goal) is branched on at once; through a
+        // and b alone each branch left a fractional a or b beside an odd n
+        // and the search went 200 nodes deep unproven (the circle at 0.007
+        // of its diagonal: 13 ms for 3 rows).
+        const int half = model.add_integer(1.0);
         LinearExpr row = sides[0];
-        row[a] -= 2.0;
-        row[bb] -= 2.0;
+        row[half] -= 2.0;
         model.add_equation(row, 0.0);
+        LinearExpr halves = column(half);
+        halves[a] -= 1.0;
+        halves[bb] -= 1.0;
+        model.add_equation(halves, 0.0);
         model.add_deviation(difference(column(a), column(bb)), 0.0, balance);
         params = {a, bb};
         break;
