@@ -629,6 +629,8 @@ class Decomposer {
   // ---------------------------------------------------------------- set-up
 
   int point_count(int e) const { return static_cast<int>(axis_.edges[e].points.size()); }
+  // The polyline step of edge e that holds position s (point index plus fraction).
+  int step_of(int e, double s) const { return std::clamp(static_cast<int>(std::floor(s)), 0, point_count(e) - 2); }
   bool closed(int e) const { return axis_.edges[e].from < 0; }
 
   // Junctions the medial stage left at one point, joined by an edge of no
@@ -685,7 +687,7 @@ class Decomposer {
         // block of no area. It is the contact's own.
         const int v = loc.s < 0.5 * last ? axis_.edges[s.edge].from : axis_.edges[s.edge].to;
         if (loc.edge >= 0 && v >= 0 && contact_vertex(axis_.vertices[v])) {
-          const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(s.edge) - 2);
+          const int i = step_of(s.edge, loc.s);
           const MedialPoint& near = axis_.edges[s.edge].points[loc.s - i < 0.5 ? i : i + 1];
           if (distance(nearest_on_run(index_, near.left, s.p).point, nearest_on_run(index_, near.right, s.p).point) <=
               sliver_length()) {
@@ -999,7 +1001,7 @@ class Decomposer {
     const auto& pts = axis_.edges[c.edge].points;
     const int i = static_cast<int>(c.s);
     const auto exact = [&](double s) -> std::optional<MedialPoint> {
-      const int j = std::clamp(static_cast<int>(std::floor(s)), 0, point_count(c.edge) - 2);
+      const int j = step_of(c.edge, s);
       const Vec2 guess = pts[j].p + (s - j) * (pts[j + 1].p - pts[j].p);
       const Bisected b = bisect(index_, guess, pts[i].left, pts[i].right);
       if (!b.converged || b.a.corner >= 0 || b.b.corner >= 0) return std::nullopt;
@@ -1046,7 +1048,7 @@ class Decomposer {
   // on a switch between the polyline points either side of it (the switch
   // is then taken to be on the split).
   double cut_position(const ConcavePoint& cp) const {
-    const int i = std::clamp(static_cast<int>(std::floor(cp.s)), 0, point_count(cp.edge) - 2);
+    const int i = step_of(cp.edge, cp.s);
     for (const Location& loc : locations_) {
       if (loc.edge == cp.edge && loc.s > i && loc.s < i + 1) return loc.s;
     }
@@ -1063,7 +1065,7 @@ class Decomposer {
     // The flow on either side, both turned onto the arm: where the arm is
     // the corner's radius perpendicular to an edge the adjusted direction
     // jumps there, and the flow may switch right at the split.
-    const int i = std::clamp(static_cast<int>(std::floor(cp.s)), 0, point_count(cp.edge) - 2);
+    const int i = step_of(cp.edge, cp.s);
     c.behind = points_[cp.edge][i];
     c.ahead = points_[cp.edge][i + 1];
     for (PointFlow* f : {&c.behind, &c.ahead}) {
@@ -1164,7 +1166,7 @@ class Decomposer {
         continue;
       }
       if (cut_at(loc.edge, loc.s)) continue;
-      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
+      const int i = step_of(loc.edge, loc.s);
       Cut c;
       c.edge = loc.edge;
       c.s = loc.s;
@@ -1208,8 +1210,12 @@ class Decomposer {
   // the switch were at the junction; only where the junction's sectors
   // then get 4 + k elements between them, at least one each.
   struct Gathering {
+    struct Stretch {
+      int from = 0, to = 0;  // the edge's points [from, to) between its member and the junction
+      int q = 0;             // the member's far side's flow, which they take
+    };
     int vertex = -1;
-    std::map<int, int> end_q;  // per edge whose member moves: the q it gets at the junction
+    std::map<int, Stretch> stretches;  // per edge whose member moves
   };
 
   std::optional<Gathering> junction_gathering(int u) const {
@@ -1245,7 +1251,7 @@ class Decomposer {
       if (loc.vertex >= 0) continue;
       const int e = loc.edge;
       const bool at_start = end_vertex(e, true) == v;
-      if (at_start == (end_vertex(e, false) == v) || g.end_q.count(e)) return std::nullopt;
+      if (at_start == (end_vertex(e, false) == v) || g.stretches.count(e)) return std::nullopt;
       const auto between = [&](double s) { return at_start ? s < loc.s + 1e-12 : s > loc.s - 1e-12; };
       for (std::size_t other = 0; other < locations_.size(); ++other) {
         if (static_cast<int>(other) != m && locations_[other].edge == e && between(locations_[other].s))
@@ -1257,8 +1263,9 @@ class Decomposer {
       for (const Cut& c : cuts_) {
         if (c.edge == e && between(c.s)) return std::nullopt;
       }
-      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(e) - 2);
-      g.end_q[e] = at_start ? points_[e][i + 1].q : points_[e][i].q;
+      const int i = step_of(e, loc.s);
+      g.stretches[e] = at_start ? Gathering::Stretch{0, i + 1, points_[e][i + 1].q}
+                                : Gathering::Stretch{i + 1, point_count(e), points_[e][i].q};
     }
     int elements = 0;
     for (const End& end : ends_[v]) {
@@ -1272,22 +1279,16 @@ class Decomposer {
 
   // away_q at the junction once the gathering's members are there.
   int gathered_away_q(const Gathering& g, int e, bool at_start) const {
-    const auto it = g.end_q.find(e);
-    if (it == g.end_q.end()) return away_q(e, at_start);
-    return at_start ? it->second : -it->second;
+    const auto it = g.stretches.find(e);
+    if (it == g.stretches.end()) return away_q(e, at_start);
+    return at_start ? it->second.q : -it->second.q;
   }
 
   void gather_at_junction(int u) {
     const std::optional<Gathering> g = junction_gathering(u);
     if (!g) return;
-    for (const auto& [e, q] : g->end_q) {
-      const bool at_start = end_vertex(e, true) == g->vertex;
-      const int m = *std::find_if(units_[u].members.begin(), units_[u].members.end(),
-                                  [&, e = e](int x) { return locations_[x].edge == e; });
-      const int i = std::clamp(static_cast<int>(std::floor(locations_[m].s)), 0, point_count(e) - 2);
-      std::vector<PointFlow>& flow = points_[e];
-      for (int j = at_start ? 0 : i + 1; j < (at_start ? i + 1 : point_count(e)); ++j) flow[j].q = q;
-    }
+    for (const auto& [e, stretch] : g->stretches)
+      for (int j = stretch.from; j < stretch.to; ++j) points_[e][j].q = stretch.q;
     for (const int m : units_[u].members) locations_[m] = Location{-1, 0.0, g->vertex};
     gathered_ = true;
     notes_.push_back("fixed a k = " + std::to_string(units_[u].k) +
@@ -1612,7 +1613,7 @@ class Decomposer {
     const auto& pts = axis_.edges[e].points;
     const double lo = std::min(a, b), hi = std::max(a, b);
     const auto at = [&](double s) {
-      const int i = std::clamp(static_cast<int>(std::floor(s)), 0, point_count(e) - 2);
+      const int i = step_of(e, s);
       return pts[i].p + (s - i) * (pts[i + 1].p - pts[i].p);
     };
     double total = 0.0;
@@ -1732,7 +1733,7 @@ class Decomposer {
       const bool at_start = last.to == 0.0;
       type = 2 - away_q(last.edge, at_start);
     } else {
-      const int i = std::clamp(static_cast<int>(std::floor(loc.s)), 0, point_count(loc.edge) - 2);
+      const int i = step_of(loc.edge, loc.s);
       type = last.forward() ? 2 + points_[loc.edge][i].q : 2 - points_[loc.edge][i + 1].q;
     }
     return type >= 1 && type <= 2;
