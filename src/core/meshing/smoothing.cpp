@@ -105,8 +105,6 @@ class Smoother {
   Smoother(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options)
       : face_(face), mesh_(mesh), options_(options) {
     validate();
-    build_adjacency();
-    find_movable_nodes();
     quad_sj_.resize(mesh_.quads.size());
     for (std::size_t q = 0; q < mesh_.quads.size(); ++q) quad_sj_[q] = quad_value<true>(static_cast<int>(q), -1, {});
   }
@@ -117,11 +115,19 @@ class Smoother {
     result.min_scaled_jacobian_before = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_before = count_inverted();
     if (options_.joint_search_only) {
-      if (spread_worst()) improve_worst();
+      // A mesh already good enough is left before its adjacency is even
+      // built: this runs after every smoothing, most often on such a mesh.
+      if (result.min_scaled_jacobian_before < kSpreadBelow) {
+        build_adjacency();
+        find_movable_nodes();
+        if (spread_worst()) improve_worst();
+      }
       result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
       result.inverted_after = count_inverted();
       return result;
     }
+    build_adjacency();
+    find_movable_nodes();
     if (result.inverted_before > 0) result.sweeps += untangle();
     // Some folds need a side to shrink on the way out (a high-lift slot,
     // fuzz aerofoil_3_217): untangled once more without the side floor.
@@ -174,15 +180,6 @@ class Smoother {
       for (int i = 0; i < 4; ++i) corners_[fill[mesh_.quads[q][i]]++] = static_cast<int>(q) * 4 + i;
   }
 
-  // The side from -> to is on the mesh boundary when no quad runs it to -> from.
-  bool boundary_side(int from, int to) const {
-    for (int k = offsets_[to]; k < offsets_[to + 1]; ++k) {
-      const auto& quad = mesh_.quads[corners_[k] / 4];
-      if (quad[(corners_[k] % 4 + 1) % 4] == from) return false;
-    }
-    return true;
-  }
-
   // Interior nodes move freely; boundary nodes slide between their two
   // boundary neighbours (along the loop: quads are counter-clockwise with the
   // material on the left, so a quad's boundary side runs with the loop).
@@ -199,12 +196,23 @@ class Smoother {
     for (int n = 0; n < nodes; ++n) {
       const NodePlace& place = mesh_.places[n];
       if (offsets_[n] == offsets_[n + 1] || place.face_corner || fixed[n]) continue;
+      // A side n -> next is on the mesh boundary when no quad runs it
+      // next -> n, that is when next is no quad's corner before n; and
+      // prev -> n when prev is no quad's corner after n.
       int behind_count = 0, ahead_count = 0;
-      for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+      const auto neighbour = [&](int k, int step) {
         const auto& quad = mesh_.quads[corners_[k] / 4];
-        const int i = corners_[k] % 4, next = quad[(i + 1) % 4], prev = quad[(i + 3) % 4];
-        if (boundary_side(n, next)) ahead_[n] = next, ++ahead_count;
-        if (boundary_side(prev, n)) behind_[n] = prev, ++behind_count;
+        return quad[(corners_[k] % 4 + step) % 4];
+      };
+      const auto among = [&](int node, int step) {
+        for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
+          if (neighbour(k, step) == node) return true;
+        return false;
+      };
+      for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
+        const int next = neighbour(k, 1), prev = neighbour(k, 3);
+        if (!among(next, 3)) ahead_[n] = next, ++ahead_count;
+        if (!among(prev, 1)) behind_[n] = prev, ++behind_count;
       }
       if (place.loop < 0) {
         if (ahead_count > 0)
@@ -671,9 +679,12 @@ class Smoother {
   }
 
   // Direct search on the nodes of the worst quads: the Laplacian steps
-  // spread quality, this lifts the minimum itself.
+  // spread quality, this lifts the minimum itself. A node's search depends
+  // only on where it and the nodes of its quads are, so a node that found no
+  // better place is not searched again until one of those moves.
   void improve_worst() {
     std::vector<int> worst_quads, nodes;
+    std::vector<char> settled(mesh_.nodes.size(), 0);
     for (int pass = 0; pass < kWorstPasses; ++pass) {
       const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
       const double band = worst < kGoodEnough ? kWorstBand : kWorstBand * (1.0 - worst);
@@ -690,7 +701,16 @@ class Smoother {
       std::sort(nodes.begin(), nodes.end());
       nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
       bool moved = false;
-      for (int n : nodes) moved |= optimise_node<true>(n);
+      for (int n : nodes) {
+        if (settled[n]) continue;
+        if (!optimise_node<true>(n)) {
+          settled[n] = 1;
+          continue;
+        }
+        moved = true;
+        for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
+          for (int m : mesh_.quads[corners_[k] / 4]) settled[m] = 0;
+      }
       if (!moved) break;
     }
   }
