@@ -24,6 +24,10 @@ constexpr int kRelaxSweeps = 50;
 // and cannot help the worst element.
 constexpr double kGoodEnough = 0.9;
 constexpr int kWorstPasses = 5;
+// The direct search is spared when the worst element is within this of the
+// best that the mesh's irregular interior nodes allow (see
+// irregular_node_bound): it could lift the minimum by no more.
+constexpr double kBoundSlack = 1e-3;
 // Quads within this much of the minimum scaled Jacobian count as the worst:
 // their nodes' room lifts it. Once the minimum is good enough, the band
 // shrinks to this fraction of its distance from 1, or it would hold nearly
@@ -137,7 +141,7 @@ class Smoother {
       floor_untangling_ = true;
     }
     result.sweeps += laplacian_sweeps();
-    improve_worst();
+    if (*std::min_element(quad_sj_.begin(), quad_sj_.end()) < irregular_node_bound() - kBoundSlack) improve_worst();
     result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
     result.inverted_after = count_inverted();
     return result;
@@ -676,6 +680,21 @@ class Smoother {
       }
     }
     return passes;
+  }
+
+  // The highest minimum scaled Jacobian any placement of the nodes could
+  // reach for the mesh's irregular interior nodes: v corners round a node
+  // add up to 360 degrees, so the least of them is at most 360 / v degrees,
+  // or at least that for v < 4 (a valence-3 node has a corner of 120 degrees
+  // or more): sin(360 / v degrees) either way.
+  double irregular_node_bound() const {
+    double bound = 1.0;
+    for (std::size_t n = 0; n < mesh_.nodes.size(); ++n) {
+      const int valence = offsets_[n + 1] - offsets_[n];
+      if (mesh_.places[n].loop >= 0 || valence == 4 || valence == 0) continue;
+      bound = std::min(bound, std::max(0.0, std::sin(2.0 * kPi / valence)));
+    }
+    return bound;
   }
 
   // Direct search on the nodes of the worst quads: the Laplacian steps
