@@ -304,11 +304,16 @@ TEST(Smoothing, JointSearchKeepsTheNodeSearchesBounds) {
         const BoundaryEdge& edge = square.loops[place.loop].edges[place.edge];
         EXPECT_LT(distance(mesh.nodes[k], edge_point(edge, place.t).p), 1e-12);
       }
-      // The left and right sides' nodes keep their order up the side.
-      for (int j = 1; j < n; ++j) {
-        EXPECT_LT(mesh.nodes[(j - 1) * (n + 1)].y, mesh.nodes[j * (n + 1)].y);
-        EXPECT_LT(mesh.nodes[(j - 1) * (n + 1) + n].y, mesh.nodes[j * (n + 1) + n].y);
-      }
+      // The left and right sides' nodes keep their order up the side, and
+      // each interval there at least a quarter of its length before.
+      for (int j = 1; j <= n; ++j)
+        for (const int column : {0, n}) {
+          const int below = (j - 1) * (n + 1) + column, above = j * (n + 1) + column;
+          EXPECT_LT(mesh.nodes[below].y, mesh.nodes[above].y);
+          EXPECT_GE(distance(mesh.nodes[below], mesh.nodes[above]),
+                    0.25 * distance(settled.nodes[below], settled.nodes[above]) * (1 - 1e-9))
+              << n << " " << power << " " << column << " " << j;
+        }
     }
   EXPECT_GT(searched, 5);
 }
