@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 namespace mm {
 namespace {
@@ -377,6 +378,7 @@ class Smoother {
 
   // How much the edge's tangent turns between two parameters (sampled).
   double turning(const BoundaryEdge& edge, double from, double to) const {
+    if (std::holds_alternative<LineCurve>(edge.curve)) return 0.0;  // what the sampling gives a line, exactly
     constexpr int kSteps = 8;
     double total = 0.0;
     Vec2 last = edge_point(edge, from).d1;
@@ -917,10 +919,13 @@ class Smoother {
       for (const Free& f : self.free) self.gradient[f.node] = Vec2{};
       for (int q : self.quads) {
         const auto& quad = mesh.quads[q];
+        // Each side's length once: the two corners at its ends see it either way round.
+        double side_length[4];
+        for (int i = 0; i < 4; ++i) side_length[i] = norm(mesh.nodes[quad[(i + 1) % 4]] - mesh.nodes[quad[i]]);
         for (int i = 0; i < 4; ++i) {
           const int at = quad[i], next = quad[(i + 1) % 4], prev = quad[(i + 3) % 4];
           const Vec2 a = mesh.nodes[next] - mesh.nodes[at], b = mesh.nodes[prev] - mesh.nodes[at];
-          const double la = norm(a), lb = norm(b);
+          const double la = side_length[i], lb = side_length[(i + 3) % 4];
           const double s = cross(a, b) / (la * lb);
           if (!(s > kSpreadFloor)) return kOut;
           least = std::min(least, s);
