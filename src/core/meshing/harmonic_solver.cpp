@@ -26,6 +26,8 @@ struct Level {
   std::vector<double> diagonal;
   std::vector<int> aggregate;    // fine node -> node of the next level
   std::vector<double> cholesky;  // coarsest level only: dense lower factor, n x n
+  std::vector<int> first;        // and where each row of the factor starts (its envelope)
+  std::vector<int> last;         // and where each of its columns ends
   mutable std::vector<Vec2> residual, coarse_rhs, coarse_x;
 };
 
@@ -91,23 +93,38 @@ Level coarsen(const Level& fine, const std::vector<int>& of, int n) {
   return coarse;
 }
 
+// Cholesky's factor keeps within the matrix's envelope: row i of the factor
+// is zero left of the first entry of row i of the matrix. The loops skip
+// what lies outside (zeros that would only be subtracted): on a block's
+// nodes, numbered row by row, the envelope is a band as wide as the block.
 void factor_dense(Level& level) {
   const int n = level.n;
   std::vector<double>& a = level.cholesky;
   a.assign(static_cast<std::size_t>(n) * n, 0.0);
+  level.first.resize(n);
   for (int i = 0; i < n; ++i) {
     a[i * n + i] = level.diagonal[i];
-    for (int k = level.row[i]; k < level.row[i + 1]; ++k) a[i * n + level.col[k]] = level.value[k];
+    level.first[i] = i;
+    for (int k = level.row[i]; k < level.row[i + 1]; ++k) {
+      a[i * n + level.col[k]] = level.value[k];
+      level.first[i] = std::min(level.first[i], level.col[k]);
+    }
   }
+  level.last.resize(n);
+  for (int i = 0; i < n; ++i) level.last[i] = i;
+  for (int i = 0; i < n; ++i)
+    for (int j = level.first[i]; j < i; ++j) level.last[j] = std::max(level.last[j], i);
+  const std::vector<int>& first = level.first;
   for (int j = 0; j < n; ++j) {
     double d = a[j * n + j];
-    for (int k = 0; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
+    for (int k = first[j]; k < j; ++k) d -= a[j * n + k] * a[j * n + k];
     if (!(d > 0.0)) throw std::invalid_argument("harmonic solve: a part of the block has no fixed neighbour");
     d = std::sqrt(d);
     a[j * n + j] = d;
-    for (int i = j + 1; i < n; ++i) {
+    for (int i = j + 1; i <= level.last[j]; ++i) {
+      if (first[i] > j) continue;
       double s = a[i * n + j];
-      for (int k = 0; k < j; ++k) s -= a[i * n + k] * a[j * n + k];
+      for (int k = std::max(first[i], first[j]); k < j; ++k) s -= a[i * n + k] * a[j * n + k];
       a[i * n + j] = s / d;
     }
   }
@@ -119,12 +136,12 @@ void solve_dense(const Level& level, const std::vector<Vec2>& b, std::vector<Vec
   x = b;
   for (int i = 0; i < n; ++i) {
     Vec2 s = x[i];
-    for (int k = 0; k < i; ++k) s = s - a[i * n + k] * x[k];
+    for (int k = level.first[i]; k < i; ++k) s = s - a[i * n + k] * x[k];
     x[i] = s / a[i * n + i];
   }
   for (int i = n - 1; i >= 0; --i) {
     Vec2 s = x[i];
-    for (int k = i + 1; k < n; ++k) s = s - a[k * n + i] * x[k];
+    for (int k = i + 1; k <= level.last[i]; ++k) s = s - a[k * n + i] * x[k];
     x[i] = s / a[i * n + i];
   }
 }
@@ -188,13 +205,6 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
     result.converged = true;
     return result;
   }
-  std::vector<Level> levels(1);
-  levels[0].n = n;
-  levels[0].unit = true;
-  levels[0].row = system.offset;
-  levels[0].col = system.neighbour;
-  levels[0].value.assign(system.neighbour.size(), -1.0);
-  levels[0].diagonal = system.degree;
   for (int c : system.neighbour)
     if (c < 0 || c >= n) throw std::invalid_argument("harmonic solve: a neighbour is not a free node");
   for (int i = 0; i < n; ++i)
@@ -202,6 +212,57 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
         !(system.degree[i] > 0.0))
       throw std::invalid_argument("harmonic solve: node " + std::to_string(i) +
                                   " has a degree below its free neighbours or no neighbour");
+  // Each connected part needs a node with a fixed neighbour (a degree above
+  // its free neighbours), or its map is not determined: checked here, not
+  // left to the factor, which a start that already fits never reaches.
+  std::vector<char> seen(n, 0);
+  std::vector<int> part;
+  for (int start = 0; start < n; ++start) {
+    if (seen[start]) continue;
+    bool anchored = false;
+    part.assign(1, start);
+    seen[start] = 1;
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      const int i = part[k];
+      anchored = anchored || system.degree[i] > system.offset[i + 1] - system.offset[i];
+      for (int e = system.offset[i]; e < system.offset[i + 1]; ++e)
+        if (!seen[system.neighbour[e]]) seen[system.neighbour[e]] = 1, part.push_back(system.neighbour[e]);
+    }
+    if (!anchored) throw std::invalid_argument("harmonic solve: a part of the block has no fixed neighbour");
+  }
+
+  // The product with the matrix, and the residual of the start: a start
+  // that already solves the system (a block placed harmonically before)
+  // needs no multigrid levels, whose set-up (a dense factor of up to 800
+  // unknowns) costs more than the rest of a small block's solve.
+  const auto apply = [&](const std::vector<Vec2>& v, std::vector<Vec2>& out) {
+    for (int i = 0; i < n; ++i) {
+      Vec2 s = system.degree[i] * v[i];
+      for (int k = system.offset[i]; k < system.offset[i + 1]; ++k) s = s - v[system.neighbour[k]];
+      out[i] = s;
+    }
+  };
+  std::vector<Vec2> residual(n), z, direction, product(n);
+  apply(x, product);
+  const auto largest_step = [&] {
+    double largest = 0.0;
+    for (int i = 0; i < n; ++i)
+      largest = std::max(largest, std::max(std::abs(residual[i].x), std::abs(residual[i].y)) / system.degree[i]);
+    return largest;
+  };
+  for (int i = 0; i < n; ++i) residual[i] = rhs[i] - product[i];
+  if (largest_step() <= tolerance) {
+    result.converged = true;
+    return result;
+  }
+
+  std::vector<Level> levels(1);
+  levels[0].n = n;
+  levels[0].unit = true;
+  levels[0].row = system.offset;
+  levels[0].col = system.neighbour;
+  levels[0].value.assign(system.neighbour.size(), -1.0);
+  levels[0].diagonal = system.degree;
   while (levels.back().n > kCoarsest) {
     std::vector<int> of;
     const int count = aggregate(levels.back(), of);
@@ -216,26 +277,6 @@ HarmonicSolve solve_harmonic(const HarmonicSystem& system, const std::vector<Vec
   const Level& top = levels[0];
 
   // Preconditioned conjugate gradients, each coordinate its own scalars.
-  const auto apply = [&](const std::vector<Vec2>& v, std::vector<Vec2>& out) {
-    for (int i = 0; i < n; ++i) {
-      Vec2 s = top.diagonal[i] * v[i];
-      for (int k = top.row[i]; k < top.row[i + 1]; ++k) s = s - v[top.col[k]];
-      out[i] = s;
-    }
-  };
-  std::vector<Vec2> residual(n), z, direction, product(n);
-  apply(x, product);
-  const auto largest_step = [&] {
-    double largest = 0.0;
-    for (int i = 0; i < n; ++i)
-      largest = std::max(largest, std::max(std::abs(residual[i].x), std::abs(residual[i].y)) / top.diagonal[i]);
-    return largest;
-  };
-  for (int i = 0; i < n; ++i) residual[i] = rhs[i] - product[i];
-  if (largest_step() <= tolerance) {
-    result.converged = true;
-    return result;
-  }
   v_cycle(levels, 0, residual, z);
   direction = z;
   double rz[2] = {0.0, 0.0};
