@@ -198,26 +198,26 @@ class Smoother {
     std::vector<char> fixed(nodes, 0);
     for (int n : options_.fixed)
       if (n >= 0 && n < nodes) fixed[n] = 1;
+    std::vector<int> nexts, prevs;  // the nodes after and before n in its quads
     for (int n = 0; n < nodes; ++n) {
       const NodePlace& place = mesh_.places[n];
       if (offsets_[n] == offsets_[n + 1] || place.face_corner || fixed[n]) continue;
       // A side n -> next is on the mesh boundary when no quad runs it
       // next -> n, that is when next is no quad's corner before n; and
       // prev -> n when prev is no quad's corner after n.
-      int behind_count = 0, ahead_count = 0;
-      const auto neighbour = [&](int k, int step) {
-        const auto& quad = mesh_.quads[corners_[k] / 4];
-        return quad[(corners_[k] % 4 + step) % 4];
-      };
-      const auto among = [&](int node, int step) {
-        for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
-          if (neighbour(k, step) == node) return true;
-        return false;
-      };
+      nexts.clear(), prevs.clear();
       for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
-        const int next = neighbour(k, 1), prev = neighbour(k, 3);
-        if (!among(next, 3)) ahead_[n] = next, ++ahead_count;
-        if (!among(prev, 1)) behind_[n] = prev, ++behind_count;
+        const auto& quad = mesh_.quads[corners_[k] / 4];
+        nexts.push_back(quad[(corners_[k] % 4 + 1) % 4]);
+        prevs.push_back(quad[(corners_[k] % 4 + 3) % 4]);
+      }
+      const auto among = [](int node, const std::vector<int>& nodes) {
+        return std::find(nodes.begin(), nodes.end(), node) != nodes.end();
+      };
+      int behind_count = 0, ahead_count = 0;
+      for (std::size_t k = 0; k < nexts.size(); ++k) {
+        if (!among(nexts[k], prevs)) ahead_[n] = nexts[k], ++ahead_count;
+        if (!among(prevs[k], nexts)) behind_[n] = prevs[k], ++behind_count;
       }
       if (place.loop < 0) {
         if (ahead_count > 0)
