@@ -1068,14 +1068,20 @@ class BlockMesher {
   void check_mesh() const {
     const std::size_t nodes = mesh_.nodes.size();
     const QuadsAtNodes quads_at = quads_at_nodes();
-    const auto quads_on_side = [&](int a, int b) {
-      int count = 0;
+    // Each node's corners, gathered once: the corners after and before it.
+    std::vector<int> corners_first(nodes + 1, 0);
+    std::vector<std::pair<int, int>> corners;
+    for (std::size_t a = 0; a < nodes; ++a) {
       for (int k = quads_at.first[a]; k < quads_at.first[a + 1]; ++k) {
         const auto& q = mesh_.quads[quads_at.quads[k]];
         for (int i = 0; i < 4; ++i)
-          if (q[i] == a && (q[(i + 1) % 4] == b || q[(i + 3) % 4] == b)) ++count;
+          if (q[i] == static_cast<int>(a)) corners.emplace_back(q[(i + 1) % 4], q[(i + 3) % 4]);
       }
-      return count;
+      corners_first[a + 1] = static_cast<int>(corners.size());
+    }
+    const auto quads_on_side = [&](int a, int b) {
+      return static_cast<int>(std::count_if(corners.begin() + corners_first[a], corners.begin() + corners_first[a + 1],
+                                            [b](const auto& c) { return c.first == b || c.second == b; }));
     };
     // The outer sides are exactly the boundary's intervals, each once: with
     // every element turning counter-clockwise, the elements then cover the
