@@ -456,10 +456,11 @@ class Smoother {
       quad_sj_[corners_[k] / 4] = quad_value<true>(corners_[k] / 4, -1, {});
   }
 
-  void wake_neighbours(int n) {
+  // Node n moved: the movable nodes of its quads are flagged to be handled again.
+  void wake_neighbours(int n, std::vector<char>& awake) const {
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
       for (int m : mesh_.quads[corners_[k] / 4])
-        if (movable_[m]) active_[m] = 1;
+        if (movable_[m]) awake[m] = 1;
   }
 
   // One Laplacian step of one node; true if it moved noticeably.
@@ -520,7 +521,7 @@ class Smoother {
       for (std::size_t n = 0; n < active_.size(); ++n) {
         if (!active_[n]) continue;
         active_[n] = 0;
-        if (smooth_node(static_cast<int>(n))) wake_neighbours(static_cast<int>(n));
+        if (smooth_node(static_cast<int>(n))) wake_neighbours(static_cast<int>(n), active_);
       }
       any_active = std::find(active_.begin(), active_.end(), 1) != active_.end();
     }
@@ -705,7 +706,7 @@ class Smoother {
   // better place is not searched again until one of those moves.
   void improve_worst() {
     std::vector<int> worst_quads, nodes;
-    std::vector<char> settled(mesh_.nodes.size(), 0);
+    std::vector<char> awake(mesh_.nodes.size(), 1);
     for (int pass = 0; pass < kWorstPasses; ++pass) {
       const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
       const double band = worst < kGoodEnough ? kWorstBand : kWorstBand * (1.0 - worst);
@@ -723,14 +724,9 @@ class Smoother {
       nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
       bool moved = false;
       for (int n : nodes) {
-        if (settled[n]) continue;
-        if (!optimise_node<true>(n)) {
-          settled[n] = 1;
-          continue;
-        }
-        moved = true;
-        for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
-          for (int m : mesh_.quads[corners_[k] / 4]) settled[m] = 0;
+        if (!awake[n]) continue;
+        awake[n] = 0;
+        if (optimise_node<true>(n)) moved = true, wake_neighbours(n, awake);
       }
       if (!moved) break;
     }
