@@ -675,14 +675,20 @@ TEST(FuzzFaces, RingsRoundASmallHoleGetTheElementsAsked) {
 // of it, and the result says so. aerofoil_14_248 meshes as asked since a
 // submapped block with a side more than 135 degrees off its logical
 // direction is typed again following its outline's turning
-// (MeshReference.GlyphRingWithACuspGetsCornersRoundItsHole).
+// (MeshReference.GlyphRingWithACuspGetsCornersRoundItsHole), and
+// aerofoil_9_293 since its counts are solved in goal_cost at once (another
+// of the answers of equal cost, whose placement untangles; its wrapped
+// section then framed: 0.54, with less merging 0.43).
 TEST(FuzzFaces, LessMergingWhereAMergedBlockCannotBeMeshed) {
-  const std::optional<MeshedFace> turned = valid_mesh_of("aerofoil_14_248");
-  ASSERT_TRUE(turned);
-  EXPECT_GT(turned->quality.min_scaled_jacobian, 0.3);
-  // As asked: no fallback (its poor mesh made again with its sections framed is none).
-  for (const std::string& note : turned->blocks.notes) EXPECT_EQ(note.find("self-check"), std::string::npos) << note;
-  for (const char* name : {"aerofoil_4_313", "aerofoil_9_293"}) {
+  for (const char* name : {"aerofoil_14_248", "aerofoil_9_293"}) {
+    const std::optional<MeshedFace> turned = valid_mesh_of(name);
+    ASSERT_TRUE(turned) << name;
+    EXPECT_GT(turned->quality.min_scaled_jacobian, 0.3) << name;
+    // As asked: no fallback (its poor mesh made again with its sections framed is none).
+    for (const std::string& note : turned->blocks.notes)
+      EXPECT_EQ(note.find("self-check"), std::string::npos) << name << ": " << note;
+  }
+  for (const char* name : {"aerofoil_4_313"}) {
     const std::optional<MeshedFace> m = valid_mesh_of(name);
     if (!m) continue;
     EXPECT_GT(m->quality.min_scaled_jacobian, 0.05) << name;

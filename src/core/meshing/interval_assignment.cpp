@@ -222,7 +222,9 @@ class Model {
     std::vector<double> values;
   };
 
-  Outcome solve() const;
+  // lp_only: no branch and bound; values stay empty (and infeasible false)
+  // when the LP optimum is fractional.
+  Outcome solve(bool lp_only = false) const;
   bool complete_at_no_cost(std::vector<double>& x) const;
   double least_cost(std::vector<double>& x) const;
 
@@ -303,7 +305,7 @@ bool integral(const OsiSolverInterface& solver, const double* x) {
 // small problems, else or when that is not done within kPlainNodes nodes
 // CbcMain1 with its cuts (plain branching took 10 times longer on a 40 x 40
 // grid with midpoint blocks).
-Model::Outcome Model::solve() const {
+Model::Outcome Model::solve(bool lp_only) const {
   const int n_cols = static_cast<int>(columns());
   const int n_rows = static_cast<int>(rows_.size());
   // Compressed sparse columns, as loadProblem takes them: count each
@@ -346,6 +348,7 @@ Model::Outcome Model::solve() const {
     outcome.proven_optimal = true;
     return outcome;
   }
+  if (lp_only) return outcome;
   if (n_rows <= kPlainRows) {
     CbcModel plain(solver);
     plain.setLogLevel(0);
@@ -881,9 +884,41 @@ size_t first_impossible_block(const IntervalProblem& problem) {
   return infeasible - 1;
 }
 
-// The counts in stages (see assign_intervals), with crowding rows for the
-// `crowded` facing pairs.
+// Whether a count lies far above its goal (a gear ring's bore side, 56 to 75
+// times): then solved again with the unit costs growing from twice the goal
+// (add_goal_deviation), which spreads such excess. Only then: those
+// columns make the problem over twice as large, and on the shared faces,
+// whose counts reach 4 times their goals at most, the solves took twice
+// as long (fractional optima, more CBC) for no better mesh.
+bool piled_up(const IntervalProblem& problem, const BuiltModel& built, const std::vector<double>& values) {
+  for (size_t s = 0; s < problem.segments.size(); ++s) {
+    const IntervalSegment& seg = problem.segments[s];
+    if (values[built.count_columns[s]] >
+        std::max<double>(std::ceil(kPiledUp * std::max(seg.goal, 1.0)), seg.min_count) + 0.5)
+      return true;
+  }
+  return false;
+}
+
+// The counts (see assign_intervals), with crowding rows for the `crowded`
+// facing pairs.
 IntervalAssignment solve_in_stages(const IntervalProblem& problem, const Crowded& crowded) {
+  // In goal_cost at once when its LP optimum is integral (as on most faces:
+  // its breakpoints lie at integers): one LP where the stages below solve
+  // two. It is then the least goal_cost, which the stages reach too, but
+  // for the answers of exactly equal cost (all tie-breaks included) each
+  // way may meet a different one (11 of 408 check meshes changed: a ring's
+  // segments alike flipped, and smoothing's result with them). A
+  // fractional optimum goes to the stages, whose first LP is integral more
+  // often: branching on goal_cost took CBC 3.3 s on a fuzzed B-spline face
+  // whose first stage needs none.
+  {
+    const BuiltModel direct = build(problem, problem.blocks.size(), true, false, crowded);
+    Model::Outcome outcome = direct_outcome(problem, direct);
+    if (outcome.values.empty()) outcome = direct.model.solve(true);
+    if (!outcome.values.empty() && !piled_up(problem, direct, outcome.values))
+      return read_answer(direct, outcome.values);
+  }
   // First with |n - g| / g all the way down: if no count then lies more than
   // one interval below its goal, that answer costs the same in goal_cost and
   // nothing can cost less there (goal_cost is never below |n - g| / g, nor
@@ -902,18 +937,7 @@ IntervalAssignment solve_in_stages(const IntervalProblem& problem, const Crowded
                               " sides): its template's conditions cannot hold together with those of the blocks "
                               "before it, whatever the goals");
   }
-  // A count piled up far above its goal (a gear ring's bore side, 56 to 75
-  // times): solved again with the unit costs growing from twice the goal
-  // (add_goal_deviation), which spreads such excess. Only then: those
-  // columns make the problem over twice as large, and on the shared faces,
-  // whose counts reach 4 times their goals at most, the solves took twice
-  // as long (fractional optima, more CBC) for no better mesh.
-  bool convex = false;
-  for (size_t s = 0; s < problem.segments.size() && !convex; ++s) {
-    const IntervalSegment& seg = problem.segments[s];
-    convex = outcome.values[built.count_columns[s]] >
-             std::max<double>(std::ceil(kPiledUp * std::max(seg.goal, 1.0)), seg.min_count) + 0.5;
-  }
+  const bool convex = piled_up(problem, built, outcome.values);
   if (convex) {
     built = build(problem, problem.blocks.size(), false, true, crowded);
     outcome = built.model.solve();
