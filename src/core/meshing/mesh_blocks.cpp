@@ -518,18 +518,28 @@ class BlockMesher {
   }
 
   // A submapped block's narrowest distance between each facing pair of
-  // sides, over the target size.
+  // sides, over the target size. Each pair's distance is kept for the later
+  // rounds of interval assignment, which add pairs but move no segment.
   std::vector<double> facing_goals(std::size_t b) const {
     if (shapes_[b].facing.empty()) return {};
-    std::vector<std::vector<std::vector<Vec2>>> lines;  // per side, sampled once for all its pairs
-    for (const std::vector<int>& side : shapes_[b].side_segments) lines.push_back(side_lines(side));
+    const auto& sides = shapes_[b].side_segments;
+    std::map<int, std::vector<std::vector<Vec2>>> lines;  // per side, sampled once for all its pairs
+    const auto lines_of = [&](int side) -> const std::vector<std::vector<Vec2>>& {
+      auto found = lines.find(side);
+      if (found == lines.end()) found = lines.emplace(side, side_lines(sides[side])).first;
+      return found->second;
+    };
     std::vector<double> goals;
     for (const auto& [s, t] : shapes_[b].facing) {
-      double nearest = std::numeric_limits<double>::max();
-      for (const std::vector<Vec2>& from : lines[s])
-        for (const Vec2 p : from)
-          for (const std::vector<Vec2>& to : lines[t]) nearest = std::min(nearest, distance_to_polyline(to, p));
-      goals.push_back(nearest / options_.size);
+      auto known = facing_distances_.find({sides[s], sides[t]});
+      if (known == facing_distances_.end()) {
+        double nearest = std::numeric_limits<double>::max();
+        for (const std::vector<Vec2>& from : lines_of(s))
+          for (const Vec2 p : from)
+            for (const std::vector<Vec2>& to : lines_of(t)) nearest = std::min(nearest, distance_to_polyline(to, p));
+        known = facing_distances_.emplace(std::make_pair(sides[s], sides[t]), nearest).first;
+      }
+      goals.push_back(known->second / options_.size);
     }
     return goals;
   }
@@ -1186,6 +1196,8 @@ class BlockMesher {
   EdgeCuts cuts_;
   double tolerance_;
   std::vector<int> counts_;  // intervals per segment, as placed
+  // facing_goals' distances, by the two sides' segments
+  mutable std::map<std::pair<std::vector<int>, std::vector<int>>, double> facing_distances_;
   std::vector<Segment> segments_;
   std::vector<int> shared_midside_;                       // order 2: mid-side nodes on sides shared with another face
   std::vector<std::vector<std::vector<PieceUse>>> uses_;  // per block, per side
