@@ -52,8 +52,9 @@ struct IntervalsInfeasible : std::runtime_error {
 // are; linear beyond 8 times too large), so that a goal alone rounds to the
 // nearest count and goals forced equal meet near their geometric mean (where
 // the LP optimum of that is fractional, the answer of least |n - g| / g all
-// the way down is kept when it is among the cheapest); subject to every block's conditions (block_shape.hpp),
-// n_s >= min_count, and every equal_sums pair summing alike. Template parameters
+// the way down is kept when it is among the cheapest); subject to every
+// block's conditions (block_shape.hpp), n_s >= min_count, and every
+// equal_sums pair summing alike. Template parameters
 // the equations leave free (Disc a, b; TwoSided and OneSided u, v) are chosen
 // by a tie-break far below one interval of deviation: a ~ b, the midpoint
 // triangle's sides alike, OneSided u ~ v with its two rest sides alike; among
