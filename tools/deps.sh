@@ -18,6 +18,7 @@ packages=(
   gmsh python3-gmsh libgmsh-dev # the mesher we compare against, and a reader of our .msh
   calculix-ccx # the solver of the end-to-end FEM check
   python3-meshio python3-numpy # an independent reader of our mesh files
+  python3-vtk9 # VTK's vtkMeshQuality (Verdict): the independent check of our quality measures
 )
 
 missing=()

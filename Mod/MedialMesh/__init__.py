@@ -107,7 +107,10 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
     (MedialMesh.meshing.FaceMesh) has femmesh (a Fem.FemMesh of quads, node
     ids 1..N, element ids 1..M), splits (Part edges and wires of the
     decomposition), singularities ((Vector, k) pairs), quality (quads, nodes,
-    min_scaled_jacobian, mean_scaled_jacobian, irregular_nodes, seconds, ...),
+    min_scaled_jacobian, mean_scaled_jacobian, min_shape, mean_shape,
+    max_edge_ratio, max_skew, poor_shape, needles, worst_position,
+    irregular_nodes, seconds, and the full report with every Verdict measure
+    under "measures"),
     notes, placement (the first face's 2-D frame) and per_face.
     Raises InputError naming the face and the problem.
     """

@@ -39,7 +39,10 @@ class FaceMesh:
     counter-clockwise seen from the face's normal, then the mid-side nodes of
     the sides corner 1-2, 2-3, 3-4, 4-1 (FreeCAD's, SMESH's and CalculiX's S8
     order). splits, singularities: of every face, in 3-D. quality: quads,
-    nodes, min_scaled_jacobian, mean_scaled_jacobian, irregular_nodes
+    nodes, min_scaled_jacobian, mean_scaled_jacobian, the Verdict summaries
+    (min_shape, mean_shape, max_edge_ratio, max_skew, poor_shape: quads of
+    shape under 0.3, needles: quads with sides over 10:1, worst_position:
+    the centre of the quad of least shape), irregular_nodes
     (interior and boundary), seconds (the whole call, FemMesh included),
     mesher_seconds (the compiled mesher alone) and the rest of the mesher's
     report. placement: the first face's 2-D frame (for a sketch).
@@ -67,10 +70,25 @@ def build_femmesh(nodes, elements):
     return femmesh
 
 
-def _quality(report):
+def _quality(report, nodes=None, elements=None):
+    """The report, with the Verdict summaries a user reads at the top level
+    (min_shape, mean_shape, max_edge_ratio, max_skew, poor_shape, needles)
+    and, given the mesh's nodes and elements, worst_position: the 3-D
+    centroid of the element of least shape."""
     quality = dict(report)
     quality["irregular_nodes"] = report["irregular_interior"] + report["irregular_boundary"]
     quality["mesher_seconds"] = report["seconds"]
+    measures = report["measures"]
+    quality["min_shape"] = measures["shape"]["min"]
+    quality["mean_shape"] = measures["shape"]["mean"]
+    quality["max_edge_ratio"] = measures["edge_ratio"]["max"]
+    quality["max_skew"] = measures["skew"]["max"]
+    quality["poor_shape"] = report["counts"]["shape_below_0.3"]
+    quality["needles"] = report["counts"]["edge_ratio_above_10"]
+    worst = measures["shape"]["worst_element"]
+    if nodes is not None and elements is not None and worst > 0:
+        x, y, z = nodes[elements[worst - 1, :4]].mean(axis=0).tolist()
+        quality["worst_position"] = FreeCAD.Vector(x, y, z)
     return quality
 
 
@@ -138,7 +156,7 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
                     for n, f, r in zip(names, faces, result["faces"])]
 
     femmesh = build_femmesh(result["nodes"], result["elements"])
-    quality = _quality(result["report"])
+    quality = _quality(result["report"], result["nodes"], result["elements"])
     quality["seconds"] = time.perf_counter() - start
     notes = []
     for part in per_face:

@@ -189,7 +189,7 @@ def update_sketch(sketch, placement, splits):
 def clear_results(obj, status):
     """Empty every property of the Results group (no figure left over from
     an earlier face) and put `status`, the problem, into Status."""
-    empty = {"App::PropertyInteger": 0, "App::PropertyFloat": 0.0}
+    empty = {"App::PropertyInteger": 0, "App::PropertyFloat": 0.0, "App::PropertyVector": FreeCAD.Vector()}
     for name in obj.PropertiesList:
         if obj.getGroupOfProperty(name) == "Results" and name != "Status":
             setattr(obj, name, empty.get(obj.getTypeIdOfProperty(name), []))
@@ -298,6 +298,18 @@ class MedialQuadMesh(MedialObject):
         add("App::PropertyFloat", "MinScaledJacobian", "Results", "Smallest scaled Jacobian of a quad (1: a square)",
             read_only)
         add("App::PropertyFloat", "MeanScaledJacobian", "Results", "Mean scaled Jacobian of the quads", read_only)
+        add("App::PropertyFloat", "MinShape", "Results",
+            "Smallest Verdict shape of a quad (1: a square; sees angles and stretch, under 0.3 is poor)", read_only)
+        add("App::PropertyFloat", "MeanShape", "Results", "Mean Verdict shape of the quads", read_only)
+        add("App::PropertyFloat", "MaxEdgeRatio", "Results", "Largest ratio of a quad's longest side to its shortest",
+            read_only)
+        add("App::PropertyFloat", "MaxSkew", "Results",
+            "Largest Verdict skew of a quad (0: its axes at right angles, 1: flat)", read_only)
+        add("App::PropertyInteger", "PoorShapeCount", "Results", "Quads with a Verdict shape under 0.3", read_only)
+        add("App::PropertyInteger", "NeedleCount", "Results", "Quads whose longest side is over 10 times the shortest",
+            read_only)
+        add("App::PropertyVector", "WorstElementPosition", "Results",
+            "Centre of the quad of least shape, in the document's coordinates", read_only)
         add("App::PropertyInteger", "IrregularNodes", "Results",
             "Nodes with other than 4 elements inside, or other than the corner's number on the boundary", read_only)
         add("App::PropertyFloat", "Seconds", "Results", "Time the mesh took, FemMesh included", read_only)
@@ -319,6 +331,14 @@ class MedialQuadMesh(MedialObject):
         obj.NodeCount = quality["nodes"]
         obj.MinScaledJacobian = quality["min_scaled_jacobian"]
         obj.MeanScaledJacobian = quality["mean_scaled_jacobian"]
+        obj.MinShape = quality["min_shape"]
+        obj.MeanShape = quality["mean_shape"]
+        obj.MaxEdgeRatio = quality["max_edge_ratio"]
+        obj.MaxSkew = quality["max_skew"]
+        obj.PoorShapeCount = quality["poor_shape"]
+        obj.NeedleCount = quality["needles"]
+        if "worst_position" in quality:
+            obj.WorstElementPosition = quality["worst_position"]
         obj.IrregularNodes = quality["irregular_nodes"]
         obj.Seconds = quality["seconds"]
         obj.Notes = result.notes

@@ -54,6 +54,9 @@ def too_many_quads(faces, size, names):
 def quality_text(quality, separator=", "):
     return separator.join((
         f"{quality['quads']} quads, {quality['nodes']} nodes",
+        f"shape min {quality['min_shape']:.3f} mean {quality['mean_shape']:.3f}, "
+        f"edge ratio max {quality['max_edge_ratio']:.1f}",
+        f"{quality['poor_shape']} quads of shape under 0.3, {quality['needles']} with sides over 10:1",
         f"scaled Jacobian min {quality['min_scaled_jacobian']:.3f} mean {quality['mean_scaled_jacobian']:.3f}",
         f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s"))
 
@@ -351,8 +354,9 @@ class QuadMeshTaskPanel:
     def object_quality(self):
         obj = self.obj
         return {"quads": obj.QuadCount, "nodes": obj.NodeCount, "min_scaled_jacobian": obj.MinScaledJacobian,
-                "mean_scaled_jacobian": obj.MeanScaledJacobian, "irregular_nodes": obj.IrregularNodes,
-                "seconds": obj.Seconds}
+                "mean_scaled_jacobian": obj.MeanScaledJacobian, "min_shape": obj.MinShape,
+                "mean_shape": obj.MeanShape, "max_edge_ratio": obj.MaxEdgeRatio, "poor_shape": obj.PoorShapeCount,
+                "needles": obj.NeedleCount, "irregular_nodes": obj.IrregularNodes, "seconds": obj.Seconds}
 
     def reject(self):
         try:

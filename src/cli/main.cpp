@@ -255,6 +255,27 @@ mm::PipelineOptions mesh_options(const Options& o, double diagonal) {
   return options;
 }
 
+// The Verdict measures under the one-line summary: what a FEM engineer
+// checks before solving, and where the worst element is.
+void print_measures(const mm::QualityReport& q) {
+  if (q.quads == 0) return;
+  const auto& shape = q.measure(mm::Measure::Shape);
+  const auto& edge_ratio = q.measure(mm::Measure::EdgeRatio);
+  const auto& skew = q.measure(mm::Measure::Skew);
+  const auto& condition = q.measure(mm::Measure::Condition);
+  std::cout << "  shape min " << shape.min << ", mean " << shape.mean << " (worst at " << shape.worst_at.x << ", "
+            << shape.worst_at.y << "); edge ratio max " << edge_ratio.max << ", mean " << edge_ratio.mean
+            << "; skew max " << skew.max << "; condition max " << condition.max << "\n";
+  std::cout << "  " << q.poor_shape << " quads with shape under " << mm::kPoorShape << ", " << q.needles
+            << " with edge ratio over " << mm::kNeedleEdgeRatio << ", " << q.stretched << " over "
+            << mm::kStretchedEdgeRatio;
+  if (q.size > 0.0)
+    std::cout << "; sizes sqrt(area)/H " << q.min_relative_size << " to " << q.max_relative_size << ", "
+              << 100.0 * q.sizes_in_range << " % within 0.5 to 1.5";
+  if (q.min_jacobian_ratio < 1.0) std::cout << "; least Jacobian ratio " << q.min_jacobian_ratio;
+  std::cout << "\n";
+}
+
 // Meshes the face; writes the mesh file, the report and the picture asked for.
 void run_mesh(const Options& o, const mm::FaceModel& face) {
   const mm::PipelineOptions options = mesh_options(o, face.size);
@@ -280,6 +301,7 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
               << " nodes, min scaled Jacobian " << q.min_scaled_jacobian << ", mean " << q.mean_scaled_jacobian
               << ", angles " << q.min_angle << " to " << q.max_angle << " degrees, " << q.irregular_interior.size()
               << " irregular interior nodes, " << q.seconds << " s\n";
+    print_measures(q);
   }
   if (!o.svg.empty()) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);
@@ -324,6 +346,7 @@ void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
               << q.min_scaled_jacobian << ", mean " << q.mean_scaled_jacobian << ", angles " << q.min_angle << " to "
               << q.max_angle << " degrees, " << q.irregular_interior.size() << " irregular interior nodes, "
               << q.seconds << " s\n";
+    print_measures(q);
     for (std::size_t f = 0; f < faces.size(); ++f) {
       const mm::QualityReport& fq = meshed.faces[f].quality;
       std::cout << "  " << faces[f].name << ": " << fq.quads << " quads, min scaled Jacobian " << fq.min_scaled_jacobian

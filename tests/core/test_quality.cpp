@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "boundary/face_model.hpp"
+#include "quality/quad_measures.hpp"
 #include "quality/quality.hpp"
 #include "report/mesh_files.hpp"
 
@@ -210,6 +212,109 @@ TEST(Quality, EmptyMeshHasNoWorstElement) {
   EXPECT_EQ(r.quads, 0);
   EXPECT_EQ(r.worst_element, -1);
   EXPECT_EQ(r.inverted, 0);
+}
+
+// Verdict's quad measures on quads whose values follow from their definitions.
+TEST(QuadMeasures, UnitSquareScoresBestOnEveryMeasure) {
+  const QuadMeasures m = measure_quad({Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}, Vec2{0, 1}});
+  EXPECT_DOUBLE_EQ(m.scaled_jacobian, 1.0);
+  EXPECT_DOUBLE_EQ(m.shape, 1.0);
+  EXPECT_DOUBLE_EQ(m.edge_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(m.aspect_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(m.skew, 0.0);
+  EXPECT_DOUBLE_EQ(m.taper, 0.0);
+  EXPECT_DOUBLE_EQ(m.stretch, 1.0);
+  EXPECT_DOUBLE_EQ(m.condition, 1.0);
+  EXPECT_DOUBLE_EQ(m.jacobian, 1.0);
+  EXPECT_DOUBLE_EQ(m.area, 1.0);
+}
+
+TEST(QuadMeasures, ANeedleHasRightAnglesButAPoorShape) {
+  // 1 x 10: the scaled Jacobian cannot see it, shape and edge ratio do.
+  const QuadMeasures m = measure_quad({Vec2{0, 0}, Vec2{10, 0}, Vec2{10, 1}, Vec2{0, 1}});
+  EXPECT_DOUBLE_EQ(m.scaled_jacobian, 1.0);
+  EXPECT_NEAR(m.shape, 2.0 * 10.0 / 101.0, 1e-15);
+  EXPECT_DOUBLE_EQ(m.edge_ratio, 10.0);
+  EXPECT_NEAR(m.aspect_ratio, 0.5 * 10.0 * 22.0 / 20.0, 1e-14);
+  EXPECT_NEAR(m.stretch, std::sqrt(2.0 / 101.0), 1e-15);
+  EXPECT_NEAR(m.condition, 101.0 / 20.0, 1e-14);
+  EXPECT_DOUBLE_EQ(m.skew, 0.0);
+  EXPECT_DOUBLE_EQ(m.taper, 0.0);
+}
+
+TEST(QuadMeasures, RhombusAndTrapezoid) {
+  const double h = std::sqrt(3.0) / 2.0;
+  const QuadMeasures rhombus = measure_quad({Vec2{0, 0}, Vec2{1, 0}, Vec2{1.5, h}, Vec2{0.5, h}});
+  EXPECT_NEAR(rhombus.scaled_jacobian, h, 1e-15);  // sin 60 degrees
+  EXPECT_NEAR(rhombus.shape, h, 1e-15);            // equal sides: shape is the scaled Jacobian
+  EXPECT_NEAR(rhombus.skew, 0.5, 1e-15);           // the principal axes meet at 60 degrees
+  EXPECT_NEAR(rhombus.taper, 0.0, 1e-15);
+  const QuadMeasures trapezoid = measure_quad({Vec2{0, 0}, Vec2{2, 0}, Vec2{1.5, 1}, Vec2{0.5, 1}});
+  EXPECT_NEAR(trapezoid.taper, 0.5, 1e-15);  // cross derivative 1 over the shorter axis 2
+  EXPECT_NEAR(trapezoid.skew, 0.0, 1e-15);
+}
+
+TEST(QuadMeasures, CollapsedSideScoresZeroShape) {
+  const QuadMeasures m = measure_quad({Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}, Vec2{1, 1}});
+  EXPECT_EQ(m.shape, 0.0);
+  EXPECT_EQ(m.scaled_jacobian, 0.0);
+  EXPECT_EQ(m.edge_ratio, std::numeric_limits<double>::max());
+}
+
+TEST(QuadMeasures, JacobianRatioOfEightNodeQuads) {
+  const Vec2 a{0, 0}, b{2, 0}, c{2.5, 1}, d{0.5, 1};
+  const auto mid = [](Vec2 p, Vec2 q) { return 0.5 * (p + q); };
+  // A parallelogram with straight sides: the Jacobian is constant.
+  EXPECT_NEAR(jacobian_ratio({a, b, c, d, mid(a, b), mid(b, c), mid(c, d), mid(d, a)}), 1.0, 1e-14);
+  // A side bent inwards: smaller where it bends.
+  const double bent = jacobian_ratio({a, b, c, d, mid(a, b) + Vec2{0, 0.2}, mid(b, c), mid(c, d), mid(d, a)});
+  EXPECT_GT(bent, 0.0);
+  EXPECT_LT(bent, 0.9);
+  // Bent past the opposite side: the element folds.
+  EXPECT_LE(jacobian_ratio({a, b, c, d, mid(a, b) + Vec2{0, 1.2}, mid(b, c), mid(c, d), mid(d, a)}), 0.0);
+}
+
+TEST(Quality, ReportSummarisesTheVerdictMeasures) {
+  // 10 square quads and 10 needles of 1 x 12 side by side.
+  QuadMesh mesh = grid(10, 1, 10.0, 1.0);
+  QuadMesh needles = grid(10, 1, 10.0, 12.0);
+  const int offset = static_cast<int>(mesh.nodes.size());
+  for (Vec2 p : needles.nodes) mesh.nodes.push_back(p + Vec2{20.0, 0.0});
+  mesh.places.insert(mesh.places.end(), needles.places.begin(), needles.places.end());
+  for (auto q : needles.quads) mesh.quads.push_back({q[0] + offset, q[1] + offset, q[2] + offset, q[3] + offset});
+  const QualityReport r = measure_quality(mesh, 1.0);
+  const MeasureSummary& shape = r.measure(Measure::Shape);
+  EXPECT_NEAR(shape.min, 24.0 / 145.0, 1e-14);
+  EXPECT_NEAR(shape.max, 1.0, 1e-14);
+  EXPECT_NEAR(shape.mean, 0.5 * (1.0 + 24.0 / 145.0), 1e-14);
+  EXPECT_GE(shape.worst_element, 10);
+  EXPECT_NEAR(shape.worst_at.y, 6.0, 1e-14);
+  const MeasureSummary& edge_ratio = r.measure(Measure::EdgeRatio);
+  EXPECT_NEAR(edge_ratio.max, 12.0, 1e-14);
+  EXPECT_GE(edge_ratio.worst_element, 10);
+  EXPECT_EQ(r.poor_shape, 10);
+  EXPECT_EQ(r.needles, 10);
+  EXPECT_EQ(r.stretched, 10);
+  EXPECT_EQ(r.poor_scaled_jacobian, 0);  // every corner is a right angle
+  ASSERT_EQ(static_cast<int>(r.worst_elements.size()), kWorstListed);
+  for (const WorstElement& w : r.worst_elements) EXPECT_GE(w.element, 10);
+  // Sizes against H = 1: the squares are 1, the needles sqrt(12).
+  EXPECT_NEAR(r.min_relative_size, 1.0, 1e-14);
+  EXPECT_NEAR(r.max_relative_size, std::sqrt(12.0), 1e-14);
+  EXPECT_NEAR(r.sizes_in_range, 0.5, 1e-15);
+  EXPECT_EQ(r.min_jacobian_ratio, 1.0);  // order 1
+}
+
+TEST(Quality, OrderTwoReportsTheJacobianRatio) {
+  QuadMesh mesh = grid(1, 1, 2.0, 1.0);
+  for (Vec2 m : {Vec2{1.0, 0.3}, Vec2{2.0, 0.5}, Vec2{1.0, 1.0}, Vec2{0.0, 0.5}}) {
+    mesh.nodes.push_back(m);
+    mesh.places.push_back({});
+  }
+  mesh.midside = {{4, 5, 6, 7}};
+  const QualityReport r = measure_quality(mesh);
+  EXPECT_GT(r.min_jacobian_ratio, 0.0);
+  EXPECT_LT(r.min_jacobian_ratio, 0.9);
 }
 
 std::string error_of_writing(const QuadMesh& mesh, const std::string& path) {

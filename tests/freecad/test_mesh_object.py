@@ -79,6 +79,12 @@ class TestMeshFace(unittest.TestCase):
         self.assertEqual((q["quads"], q["nodes"]), (quads, result.femmesh.NodeCount))
         self.assertGreater(q["min_scaled_jacobian"], 0.5)
         self.assertGreaterEqual(q["mean_scaled_jacobian"], q["min_scaled_jacobian"])
+        # the Verdict measures a user reads: the plate's quads are near squares
+        self.assertGreater(q["min_shape"], 0.5)
+        self.assertGreaterEqual(q["mean_shape"], q["min_shape"])
+        self.assertLess(q["max_edge_ratio"], 3.0)
+        self.assertEqual((q["poor_shape"], q["needles"]), (0, 0))
+        self.assertLess(face.distToShape(Part.Vertex(q["worst_position"]))[0], TOLERANCE)
         self.assertEqual(q["irregular_nodes"], 4)  # the four 5-valent nodes of the k = +1 singularities
         self.assertGreater(q["seconds"], 0.0)
         self.assertEqual(sorted(k for _, k in result.singularities), [1, 1, 1, 1])
@@ -227,6 +233,12 @@ class TestMeshObject(unittest.TestCase):
         self.assertEqual((mesh_obj.QuadCount, mesh_obj.NodeCount), (femmesh.FaceCount, femmesh.NodeCount))
         self.assertGreater(mesh_obj.MinScaledJacobian, 0.3)
         self.assertGreaterEqual(mesh_obj.MeanScaledJacobian, mesh_obj.MinScaledJacobian)
+        self.assertGreater(mesh_obj.MinShape, 0.0)
+        self.assertGreaterEqual(mesh_obj.MeanShape, mesh_obj.MinShape)
+        self.assertGreaterEqual(mesh_obj.MaxEdgeRatio, 1.0)
+        self.assertLessEqual(mesh_obj.PoorShapeCount, mesh_obj.QuadCount)
+        self.assertLessEqual(mesh_obj.NeedleCount, mesh_obj.QuadCount)
+        self.assertLess(face.distToShape(Part.Vertex(mesh_obj.WorstElementPosition))[0], TOLERANCE)
         self.assertGreater(mesh_obj.Seconds, 0.0)
         self.assertLess(max_distance_off(face, femmesh), TOLERANCE)
         sketch = mesh_obj.Sketch
@@ -365,6 +377,8 @@ class TestMeshObject(unittest.TestCase):
         self.assertIn("planar", mesh_obj.Status)
         self.assertEqual(mesh_obj.FemMesh.NodeCount, 0)
         self.assertEqual(mesh_obj.QuadCount, 0)
+        self.assertEqual((mesh_obj.MinShape, mesh_obj.NeedleCount), (0.0, 0))  # no figure left from before
+        self.assertEqual(mesh_obj.WorstElementPosition, FreeCAD.Vector())
         self.assertEqual(len(mesh_obj.Sketch.Geometry), 0)
         # a good face again: the object recovers
         top = next(f"Face{i + 1}" for i, f in enumerate(cylinder.Shape.Faces)

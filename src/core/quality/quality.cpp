@@ -69,15 +69,82 @@ void check_mesh(const QuadMesh& mesh) {
   }
 }
 
+constexpr MeasureInfo kMeasures[kMeasureCount] = {
+    {"scaled_jacobian", true, &QuadMeasures::scaled_jacobian},
+    {"shape", true, &QuadMeasures::shape},
+    {"edge_ratio", false, &QuadMeasures::edge_ratio},
+    {"aspect_ratio", false, &QuadMeasures::aspect_ratio},
+    {"skew", false, &QuadMeasures::skew},
+    {"taper", false, &QuadMeasures::taper},
+    {"stretch", true, &QuadMeasures::stretch},
+    {"condition", false, &QuadMeasures::condition},
+};
+
+Vec2 centroid(const std::array<Vec2, 4>& p) {
+  return 0.25 * (p[0] + p[1] + p[2] + p[3]);
+}
+
+// Whether value a is worse than b by measure m.
+bool worse(const MeasureInfo& m, double a, double b) {
+  return m.higher_is_better ? a < b : a > b;
+}
+
+// Keeps the kWorstListed elements of least shape, worst first.
+void keep_worst(std::vector<WorstElement>& worst, const WorstElement& candidate) {
+  const auto by_shape = [](const WorstElement& a, const WorstElement& b) {
+    return a.measures.shape < b.measures.shape;
+  };
+  if (static_cast<int>(worst.size()) == kWorstListed && !by_shape(candidate, worst.back())) return;
+  worst.insert(std::upper_bound(worst.begin(), worst.end(), candidate, by_shape), candidate);
+  if (static_cast<int>(worst.size()) > kWorstListed) worst.pop_back();
+}
+
+// Adds one element's measures to the report's summaries and counts (means
+// are sums until finish_measures).
+void add_measures(QualityReport& report, int element, Vec2 at, const QuadMeasures& m) {
+  for (int k = 0; k < kMeasureCount; ++k) {
+    const MeasureInfo& info = kMeasures[k];
+    MeasureSummary& summary = report.measures[k];
+    const double value = m.*info.value;
+    if (summary.worst_element < 0) {
+      summary.min = summary.max = value;
+      summary.worst_element = element, summary.worst_at = at;
+    } else {
+      const bool worst = worse(info, value, info.higher_is_better ? summary.min : summary.max);
+      summary.min = std::min(summary.min, value);
+      summary.max = std::max(summary.max, value);
+      if (worst) summary.worst_element = element, summary.worst_at = at;
+    }
+    summary.mean += value;
+  }
+  if (m.shape < kPoorShape) ++report.poor_shape;
+  if (m.edge_ratio > kNeedleEdgeRatio) ++report.needles;
+  if (m.edge_ratio > kStretchedEdgeRatio) ++report.stretched;
+  if (m.scaled_jacobian < kPoorScaledJacobian) ++report.poor_scaled_jacobian;
+  keep_worst(report.worst_elements, WorstElement{element, at, m});
+}
+
+void finish_measures(QualityReport& report) {
+  if (report.quads == 0) return;
+  for (MeasureSummary& summary : report.measures) summary.mean /= report.quads;
+}
+
 }  // namespace
+
+const MeasureInfo& measure_info(Measure m) {
+  return kMeasures[static_cast<int>(m)];
+}
 
 double scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return quad_scaled_jacobian({a, b, c, d});
 }
 
-QualityReport measure_quality(const QuadMesh& mesh) {
+QualityReport measure_quality(const QuadMesh& mesh, double size) {
   check_mesh(mesh);
   QualityReport report;
+  report.size = size > 0.0 ? size : 0.0;
+  int sizes_in_range = 0;
+  report.min_relative_size = std::numeric_limits<double>::infinity();
   report.nodes = static_cast<int>(mesh.nodes.size());
   report.quads = static_cast<int>(mesh.quads.size());
   std::vector<int> elements_at(mesh.nodes.size(), 0);
@@ -106,6 +173,28 @@ QualityReport measure_quality(const QuadMesh& mesh) {
     }
     sum_jacobian += element_jacobian;
     report.area += shoelace_area(p);
+    const QuadMeasures measures = measure_quad(p);
+    add_measures(report, static_cast<int>(q), centroid(p), measures);
+    if (mesh.order() == 2) {
+      const auto& mid = mesh.midside[q];
+      const std::array<Vec2, 8> p8{
+          p[0], p[1], p[2], p[3], mesh.nodes[mid[0]], mesh.nodes[mid[1]], mesh.nodes[mid[2]], mesh.nodes[mid[3]]};
+      report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, jacobian_ratio(p8));
+    }
+    if (report.size > 0.0) {
+      const double relative = std::sqrt(std::max(0.0, measures.area)) / report.size;
+      report.min_relative_size = std::min(report.min_relative_size, relative);
+      report.max_relative_size = std::max(report.max_relative_size, relative);
+      report.mean_relative_size += relative;
+      if (relative >= 0.5 && relative <= 1.5) ++sizes_in_range;
+    }
+  }
+  finish_measures(report);
+  if (report.size > 0.0 && report.quads > 0) {
+    report.mean_relative_size /= report.quads;
+    report.sizes_in_range = static_cast<double>(sizes_in_range) / report.quads;
+  } else {
+    report.min_relative_size = 0.0;
   }
   if (!mesh.quads.empty()) {
     report.min_scaled_jacobian = min_jacobian;
@@ -136,11 +225,47 @@ QualityReport combine_quality(const std::vector<QualityReport>& faces, const std
   report.quads = static_cast<int>(merged.quads.size());
   double sum_jacobian = 0.0;
   int first_quad = 0;
+  int sized_quads = 0;
   bool any = false;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const QualityReport& q = faces[f];
     report.inverted += q.inverted;
     report.area += q.area;
+    report.poor_shape += q.poor_shape;
+    report.needles += q.needles;
+    report.stretched += q.stretched;
+    report.poor_scaled_jacobian += q.poor_scaled_jacobian;
+    report.min_jacobian_ratio = std::min(report.min_jacobian_ratio, q.min_jacobian_ratio);
+    for (WorstElement w : q.worst_elements) {
+      w.element += first_quad;
+      keep_worst(report.worst_elements, w);
+    }
+    if (q.quads > 0) {
+      for (int k = 0; k < kMeasureCount; ++k) {
+        const MeasureSummary& from = q.measures[k];
+        MeasureSummary& to = report.measures[k];
+        const MeasureInfo& info = kMeasures[k];
+        const bool first = to.worst_element < 0;
+        if (first ||
+            worse(info, info.higher_is_better ? from.min : from.max, info.higher_is_better ? to.min : to.max)) {
+          to.worst_element = first_quad + from.worst_element;
+          to.worst_at = from.worst_at;
+        }
+        to.min = first ? from.min : std::min(to.min, from.min);
+        to.max = first ? from.max : std::max(to.max, from.max);
+        to.mean += from.mean * q.quads;
+      }
+      if (q.size > 0.0) {
+        const bool first = sized_quads == 0;
+        report.size = first ? q.size : std::min(report.size, q.size);
+        report.min_relative_size =
+            first ? q.min_relative_size : std::min(report.min_relative_size, q.min_relative_size);
+        report.max_relative_size = std::max(report.max_relative_size, q.max_relative_size);
+        report.mean_relative_size += q.mean_relative_size * q.quads;
+        report.sizes_in_range += q.sizes_in_range * q.quads;
+        sized_quads += q.quads;
+      }
+    }
     if (q.quads > 0) {
       if (!any || q.min_scaled_jacobian < report.min_scaled_jacobian) {
         report.min_scaled_jacobian = q.min_scaled_jacobian;
@@ -154,6 +279,11 @@ QualityReport combine_quality(const std::vector<QualityReport>& faces, const std
     first_quad += q.quads;
   }
   if (report.quads > 0) report.mean_scaled_jacobian = sum_jacobian / report.quads;
+  finish_measures(report);
+  if (sized_quads > 0) {
+    report.mean_relative_size /= sized_quads;
+    report.sizes_in_range /= sized_quads;
+  }
 
   std::vector<int> elements(merged.nodes.size(), 0);
   for (const auto& quad : merged.quads)

@@ -10,6 +10,41 @@ nlohmann::json node_list(const std::vector<IrregularNode>& nodes) {
   }
   return list;
 }
+nlohmann::json measures_json(const QualityReport& quality) {
+  nlohmann::json measures = nlohmann::json::object();
+  for (int k = 0; k < kMeasureCount; ++k) {
+    const MeasureSummary& m = quality.measures[k];
+    measures[measure_info(static_cast<Measure>(k)).name] = {{"min", m.min},
+                                                            {"mean", m.mean},
+                                                            {"max", m.max},
+                                                            {"worst_element", m.worst_element + 1},
+                                                            {"worst_x", m.worst_at.x},
+                                                            {"worst_y", m.worst_at.y}};
+  }
+  return measures;
+}
+
+nlohmann::json worst_json(const QualityReport& quality) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const WorstElement& w : quality.worst_elements) {
+    list.push_back({{"element", w.element + 1},
+                    {"x", w.at.x},
+                    {"y", w.at.y},
+                    {"shape", w.measures.shape},
+                    {"edge_ratio", w.measures.edge_ratio},
+                    {"scaled_jacobian", w.measures.scaled_jacobian}});
+  }
+  return list;
+}
+
+nlohmann::json sizes_json(const QualityReport& quality) {
+  if (quality.size <= 0.0) return nullptr;
+  return {{"requested", quality.size},
+          {"min", quality.min_relative_size},
+          {"mean", quality.mean_relative_size},
+          {"max", quality.max_relative_size},
+          {"in_half_to_one_and_a_half", quality.sizes_in_range}};
+}
 }  // namespace
 
 nlohmann::json mesh_report_json(const QualityReport& quality, int order) {
@@ -29,6 +64,15 @@ nlohmann::json mesh_report_json(const QualityReport& quality, int order) {
           {"irregular_boundary", quality.irregular_boundary.size()},
           {"irregular_interior_nodes", node_list(quality.irregular_interior)},
           {"irregular_boundary_nodes", node_list(quality.irregular_boundary)},
+          {"measures", measures_json(quality)},
+          {"counts",
+           {{"shape_below_0.3", quality.poor_shape},
+            {"edge_ratio_above_10", quality.needles},
+            {"edge_ratio_above_5", quality.stretched},
+            {"scaled_jacobian_below_0.3", quality.poor_scaled_jacobian}}},
+          {"worst_elements", worst_json(quality)},
+          {"min_jacobian_ratio", quality.min_jacobian_ratio},
+          {"relative_sizes", sizes_json(quality)},
           {"area", quality.area},
           {"seconds", quality.seconds},
           {"stages", stages}};
