@@ -137,7 +137,7 @@ TEST(Decomposition, RoundedRectangleGetsATriangleRoundEachFillet) {
     options.meshing.size = share * f.size;
     const MeshedFace m = mesh_face(f, options);
     EXPECT_TRUE(test::mesh_validity_problems(f, m.blocks.mesh).empty());
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.8) << share;
+    EXPECT_GT(m.quality.min_shape(), 0.65) << share;
     EXPECT_EQ(m.quality.irregular_interior.size(), 4u) << share;
   }
 }
@@ -437,10 +437,11 @@ TEST(Decomposition, TwoSwitchesMergedRoundAJunctionAreFixedThereAsOneNode) {
   for (const IrregularNode& node : m.quality.irregular_interior) {
     if (node.elements != 6) continue;
     ++valence_six;
-    EXPECT_LT(std::min(distance(node.p, {-10, 0}), distance(node.p, {10, 0})), 2 * options.meshing.size);
+    // Smoothing for shape draws it up to 2.3 H off the junction.
+    EXPECT_LT(std::min(distance(node.p, {-10, 0}), distance(node.p, {10, 0})), 3 * options.meshing.size);
   }
   EXPECT_EQ(valence_six, 2);
-  EXPECT_GT(m.quality.min_scaled_jacobian, 0.75);
+  EXPECT_GT(m.quality.min_shape(), 0.7);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <BRepTools.hxx>
 #include <algorithm>
 #include <functional>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -52,7 +53,10 @@ std::vector<Case> cases() {
   // the face built at scale 1 and 10^4 measures 0.504 and 0.257, gap 0.03
   // 0.502 and 0.456 (with no turning bound in those passes, 0.445, 0.257,
   // 0.502 and 0.456; with 90 degrees 0.373, 0.394, 0.500 and 0.570).
-  // Bound 0.2 for that face, as for gap 0.03.
+  // Smoothing for Verdict's shape rather than the scaled Jacobian (no
+  // needles: gap 0.003 has shape 0.107 and 0.111 at the two scales, gap
+  // 0.03 0.180) leaves gap 0.003 at 0.175 and 0.178, gap 0.03 at 0.246.
+  // Bound 0.15 for both faces.
   for (double gap : {0.003, 0.03}) {
     all.push_back({"high_lift_gap" + std::to_string(gap).substr(0, 5),
                    [=](double scale) {
@@ -60,7 +64,7 @@ std::vector<Case> cases() {
                      layout.gap = gap;
                      return test::high_lift_face(layout, scale);
                    },
-                   0.2});
+                   0.15});
   }
   for (bool rounded : {false, true}) {
     all.push_back({rounded ? "cascade_rounded" : "cascade_sharp", [=](double scale) {
@@ -103,7 +107,10 @@ TEST_P(AerofoilFaces, EveryStageIsRight) {
       const MeshedFace meshed = mesh_face(face, options);
       const std::vector<std::string> wrong = test::mesh_validity_problems(face, meshed.blocks.mesh);
       EXPECT_TRUE(wrong.empty()) << wrong.front();
-      EXPECT_GT(meshed.quality.min_scaled_jacobian, std::min(c.min_scaled_jacobian, kMinScaledJacobian));
+      EXPECT_GT(meshed.quality.min_scaled_jacobian, std::min(c.min_scaled_jacobian, kMinScaledJacobian))
+          << c.name << ", shape " << meshed.quality.min_shape();
+      std::cout << c.name << " at scale " << GetParam() << ": scaled Jacobian " << meshed.quality.min_scaled_jacobian
+                << ", shape " << meshed.quality.min_shape() << "\n";
       EXPECT_EQ(meshed.quality.inverted, 0);
     } catch (const SelfCheckError& e) {
       ADD_FAILURE() << e.what();

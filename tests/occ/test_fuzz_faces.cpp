@@ -627,7 +627,9 @@ TEST(FuzzFaces, ElementCountFollowsTheTargetSize) {
       for (int i = 0; i < 4; ++i) ++sides[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
     for (const auto& [side, uses] : sides)
       if (uses == 1) longest = std::max(longest, norm(mesh.nodes[side.first] - mesh.nodes[side.second]));
-    EXPECT_LT(longest, 3.0 * options.meshing.size) << name;
+    // 5.5 H when the outer loop took the hole's count; smoothing for shape
+    // slides the outer loop's nodes to 3.1 H on elliptic_1_609.
+    EXPECT_LT(longest, 3.5 * options.meshing.size) << name;
   }
 }
 
@@ -675,20 +677,22 @@ TEST(FuzzFaces, RingsRoundASmallHoleGetTheElementsAsked) {
 // of it, and the result says so. aerofoil_14_248 meshes as asked since a
 // submapped block with a side more than 135 degrees off its logical
 // direction is typed again following its outline's turning
-// (MeshReference.GlyphRingWithACuspGetsCornersRoundItsHole), and
-// aerofoil_9_293 since its counts are solved in goal_cost at once (another
-// of the answers of equal cost, whose placement untangles; its wrapped
-// section then framed: 0.54, with less merging 0.43).
+// (MeshReference.GlyphRingWithACuspGetsCornersRoundItsHole). Since
+// smoothing raises Verdict's shape rather than the scaled Jacobian,
+// aerofoil_4_313's merged block untangles (its wrapped section then
+// framed) and aerofoil_9_293's no longer does. All three hold elements of
+// shape under 0.1 round the sections' noses either way: an open cause of
+// issue 40 (docs/quality.md).
 TEST(FuzzFaces, LessMergingWhereAMergedBlockCannotBeMeshed) {
-  for (const char* name : {"aerofoil_14_248", "aerofoil_9_293"}) {
+  for (const char* name : {"aerofoil_14_248", "aerofoil_4_313"}) {
     const std::optional<MeshedFace> turned = valid_mesh_of(name);
     ASSERT_TRUE(turned) << name;
-    EXPECT_GT(turned->quality.min_scaled_jacobian, 0.3) << name;
+    EXPECT_GT(turned->quality.min_scaled_jacobian, 0.1) << name;
     // As asked: no fallback (its poor mesh made again with its sections framed is none).
     for (const std::string& note : turned->blocks.notes)
       EXPECT_EQ(note.find("self-check"), std::string::npos) << name << ": " << note;
   }
-  const std::optional<MeshedFace> less = valid_mesh_of("aerofoil_4_313");
+  const std::optional<MeshedFace> less = valid_mesh_of("aerofoil_9_293");
   ASSERT_TRUE(less);
   EXPECT_GT(less->quality.min_scaled_jacobian, 0.05);
   bool noted = false;
@@ -804,7 +808,12 @@ TEST(FuzzFaces, AFilletsFixedSingularityGetsTheArcsSectorAsItsTriangle) {
       const std::optional<MeshedFace> m = valid_mesh_of(name, size_factor);
       if (!m) continue;
       EXPECT_TRUE(m->quality.irregular_boundary.empty()) << name << " at " << size_factor;
-      EXPECT_GT(m->quality.min_scaled_jacobian, 0.75) << name << " at " << size_factor;
+      EXPECT_GT(m->quality.min_scaled_jacobian, 0.5) << name << " at " << size_factor;
+      // filleted_6_915 keeps a needle (shape 0.0002 at 0.05, sides 0.0002
+      // and 2) at the foot of a column of thin elements between two splits
+      // that nearly coincide: a decomposition defect, open (docs/quality.md).
+      if (std::string(name) != "filleted_6_915")
+        EXPECT_GT(m->quality.min_shape(), 0.1) << name << " at " << size_factor;
     }
   }
 }

@@ -23,7 +23,7 @@ namespace {
 // holes and fillets stay resolved however large the target size is (a full
 // circle gets at least 8 intervals).
 constexpr double kMaxTurnPerInterval = kPi / 4.0;
-// Below this worst scaled Jacobian after smoothing with the turning bound,
+// Below this worst shape after smoothing with the turning bound,
 // boundary nodes are freed for at most this many more passes, stopping
 // once a pass with no inverted element lifts the worst by less than the gain.
 constexpr double kPoorAfterSmoothing = 0.3;
@@ -341,7 +341,7 @@ class BlockMesher {
       // optima one pass settles in; the best mesh seen is kept.
       SmoothingResult best = smooth_mesh(face_, mesh_, smoothing);
       const auto poor = [](const SmoothingResult& r) {
-        return r.inverted_after > 0 || r.min_scaled_jacobian_after < kPoorAfterSmoothing;
+        return r.inverted_after > 0 || r.min_shape_after < kPoorAfterSmoothing;
       };
       if (poor(best)) {
         smoothing.max_boundary_turn = 3 * kMaxTurnPerInterval;
@@ -349,9 +349,9 @@ class BlockMesher {
         for (int pass = 0; pass < kFreeSmoothingPasses && poor(best); ++pass) {
           const SmoothingResult r = smooth_mesh(face_, trial, smoothing);
           if (r.inverted_after < best.inverted_after ||
-              (r.inverted_after == best.inverted_after && r.min_scaled_jacobian_after > best.min_scaled_jacobian_after))
+              (r.inverted_after == best.inverted_after && r.min_shape_after > best.min_shape_after))
             best = r, mesh_ = trial;
-          if (r.inverted_after == 0 && r.min_scaled_jacobian_after < r.min_scaled_jacobian_before + kSmoothingGain)
+          if (r.inverted_after == 0 && r.min_shape_after < r.min_shape_before + kSmoothingGain)
             break;
         }
       }

@@ -29,7 +29,7 @@ constexpr int kWorstPasses = 5;
 // best that the mesh's irregular interior nodes allow (see
 // irregular_node_bound): it could lift the minimum by no more.
 constexpr double kBoundSlack = 1e-3;
-// Quads within this much of the minimum scaled Jacobian count as the worst:
+// Quads within this much of the minimum shape count as the worst:
 // their nodes' room lifts it. Once the minimum is good enough, the band
 // shrinks to this fraction of its distance from 1, or it would hold nearly
 // every quad and the search would cost far more than it gains.
@@ -42,15 +42,14 @@ constexpr double kStepFractions[] = {1.0, 0.5, 0.25};
 // before smoothing, with or without a turning bound.
 constexpr double kShortestChord = 0.25;
 // A side at a moved node keeps at least this fraction of the quad's side
-// opposite it (or its length, if already shorter): the scaled Jacobian is
-// blind to a side shrinking to nothing between two good corners, and a thin
-// strip's node otherwise slides onto its neighbour.
+// opposite it (or its length, if already shorter): a thin strip's node
+// otherwise slides onto its neighbour.
 constexpr double kShortestSide = 0.01;
 // The joint search round the worst quads (spread_worst): only when the
 // minimum is below kSpreadBelow (a poor element: Gmsh's minimum on the
 // shared faces is at most 0.72); on the kSpreadSeeds worst quads within
 // kSpreadBand of it and kSpreadRings rings round them; the soft maximum of
-// 1 / scaled Jacobian over their corners with this power (large: near the
+// 1 / shape over their corners with this power (large: near the
 // maximum itself, smooth enough for quasi-Newton steps); at most this many
 // L-BFGS steps.
 constexpr double kSpreadBelow = 0.75;
@@ -68,28 +67,33 @@ constexpr int kSlideBisections = 8;
 // Halvings of a step before the search gives up (it then has met a bound or
 // its quasi-Newton model no longer fits).
 constexpr int kSpreadLineSearch = 12;
-// A corner below this scaled Jacobian during the search is out of bounds.
+// A corner below this shape during the search is out of bounds.
 constexpr double kSpreadFloor = 1e-3;
 
-// Signed quality of corner i of a quad: the scaled Jacobian, or the
-// unnormalised corner area (cross product) when untangling.
-template <bool kScaled>
+// Signed quality of corner i of a quad: its Verdict shape, 2 x the corner
+// area over the sum of its two sides' squares (1 for a right angle between
+// equal sides; it falls with the angle and with the sides' ratio, so a
+// needle or a collapsed side scores near 0 however square its corners), or
+// the unnormalised corner area (cross product) when untangling. The scaled
+// Jacobian, which smoothing used to raise, sees angles only: raising its
+// minimum bought slightly better corners with needles.
+template <bool kShape>
 double corner_measure(const Vec2 (&v)[4], int i) {
   // From the edge to the next corner to the reversed edge from the previous one.
   const Vec2 next = v[(i + 1) % 4] - v[i], prev = -(v[i] - v[(i + 3) % 4]);
   double value = cross(next, prev);
-  if (kScaled) {
-    const double lengths = std::sqrt(dot(next, next) * dot(prev, prev));
-    value = lengths > 0.0 ? value / lengths : -1.0;  // a collapsed side is as bad as it gets
+  if (kShape) {
+    const double squares = dot(next, next) + dot(prev, prev);
+    value = squares > 0.0 ? 2.0 * value / squares : -1.0;  // a collapsed side is as bad as it gets
   }
   return value;
 }
 
 // The quad's quality at its worst corner.
-template <bool kScaled>
+template <bool kShape>
 double quad_measure(const Vec2 (&v)[4]) {
   double worst = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i) worst = std::min(worst, corner_measure<kScaled>(v, i));
+  for (int i = 0; i < 4; ++i) worst = std::min(worst, corner_measure<kShape>(v, i));
   return worst;
 }
 
@@ -110,24 +114,24 @@ class Smoother {
   Smoother(const FaceModel& face, QuadMesh& mesh, const SmoothingOptions& options)
       : face_(face), mesh_(mesh), options_(options) {
     validate();
-    quad_sj_.resize(mesh_.quads.size());
-    for (std::size_t q = 0; q < mesh_.quads.size(); ++q) quad_sj_[q] = quad_value<true>(static_cast<int>(q), -1, {});
+    quad_shape_.resize(mesh_.quads.size());
+    for (std::size_t q = 0; q < mesh_.quads.size(); ++q) quad_shape_[q] = quad_value<true>(static_cast<int>(q), -1, {});
   }
 
   SmoothingResult run() {
     SmoothingResult result;
     if (mesh_.quads.empty()) return result;
-    result.min_scaled_jacobian_before = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    result.min_shape_before = *std::min_element(quad_shape_.begin(), quad_shape_.end());
     result.inverted_before = count_inverted();
     if (options_.joint_search_only) {
       // A mesh already good enough is left before its adjacency is even
       // built: this runs after every smoothing, most often on such a mesh.
-      if (result.min_scaled_jacobian_before < kSpreadBelow) {
+      if (result.min_shape_before < kSpreadBelow) {
         build_adjacency();
         find_movable_nodes();
         if (spread_worst()) improve_worst();
       }
-      result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+      result.min_shape_after = *std::min_element(quad_shape_.begin(), quad_shape_.end());
       result.inverted_after = count_inverted();
       return result;
     }
@@ -142,8 +146,9 @@ class Smoother {
       floor_untangling_ = true;
     }
     result.sweeps += laplacian_sweeps();
-    if (*std::min_element(quad_sj_.begin(), quad_sj_.end()) < irregular_node_bound() - kBoundSlack) improve_worst();
-    result.min_scaled_jacobian_after = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    if (*std::min_element(quad_shape_.begin(), quad_shape_.end()) < irregular_node_bound() - kBoundSlack)
+      improve_worst();
+    result.min_shape_after = *std::min_element(quad_shape_.begin(), quad_shape_.end());
     result.inverted_after = count_inverted();
     return result;
   }
@@ -241,19 +246,19 @@ class Smoother {
   }
 
   // The quad's value with node `moved` put at p (moved = -1: as it is).
-  template <bool kScaled>
+  template <bool kShape>
   double quad_value(int q, int moved, Vec2 p) const {
     const auto& quad = mesh_.quads[q];
     Vec2 v[4];
     for (int i = 0; i < 4; ++i) v[i] = quad[i] == moved ? p : mesh_.nodes[quad[i]];
-    return quad_measure<kScaled>(v);
+    return quad_measure<kShape>(v);
   }
 
-  template <bool kScaled>
+  template <bool kShape>
   LocalQuality local_quality(int n, Vec2 p) const {
     LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
-      const double value = quad_value<kScaled>(corners_[k] / 4, n, p);
+      const double value = quad_value<kShape>(corners_[k] / 4, n, p);
       local.min = std::min(local.min, value);
       local.mean += value;
     }
@@ -270,7 +275,7 @@ class Smoother {
     double floor_next, floor_prev;
   };
 
-  template <bool kScaled>
+  template <bool kShape>
   void gather_star(int n, std::vector<StarQuad>& star) const {
     star.resize(offsets_[n + 1] - offsets_[n]);
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
@@ -278,7 +283,7 @@ class Smoother {
       const int at = corners_[k] % 4;
       StarQuad& s = star[k - offsets_[n]];
       for (int i = 0; i < 4; ++i) s.v[i] = mesh_.nodes[quad[(at + i) % 4]];
-      s.opposite = corner_measure<kScaled>(s.v, 2);
+      s.opposite = corner_measure<kShape>(s.v, 2);
       const auto floor = [&](Vec2 side, Vec2 opposite_side) {
         return std::min(dot(side, side), kShortestSide * kShortestSide * dot(opposite_side, opposite_side));
       };
@@ -291,20 +296,20 @@ class Smoother {
   // same values as local_quality, without going on once one corner falls
   // below current.min (then it is not). Most candidates of the searches fail
   // so, most often at the moved corner itself, which is valued first.
-  template <bool kScaled>
+  template <bool kShape>
   bool improves(std::vector<StarQuad>& star, Vec2 p, const LocalQuality& current, LocalQuality& candidate) const {
     candidate = LocalQuality{std::numeric_limits<double>::infinity(), 0.0};
     for (StarQuad& s : star) {
       s.v[0] = p;
       const Vec2 next_side = s.v[1] - p, prev_side = s.v[3] - p;
-      if ((kScaled || floor_untangling_) &&
+      if ((kShape || floor_untangling_) &&
           (dot(next_side, next_side) < s.floor_next || dot(prev_side, prev_side) < s.floor_prev))
         return false;
-      const double at = corner_measure<kScaled>(s.v, 0);
+      const double at = corner_measure<kShape>(s.v, 0);
       if (at < current.min) return false;
-      const double next = corner_measure<kScaled>(s.v, 1);
+      const double next = corner_measure<kShape>(s.v, 1);
       if (next < current.min) return false;
-      const double prev = corner_measure<kScaled>(s.v, 3);
+      const double prev = corner_measure<kShape>(s.v, 3);
       const double value = std::min(std::min(s.opposite, at), std::min(next, prev));
       if (value < current.min) return false;
       candidate.min = std::min(candidate.min, value);
@@ -317,15 +322,15 @@ class Smoother {
   LocalQuality cached_quality(int n) const {
     LocalQuality local{std::numeric_limits<double>::infinity(), 0.0};
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k) {
-      local.min = std::min(local.min, quad_sj_[corners_[k] / 4]);
-      local.mean += quad_sj_[corners_[k] / 4];
+      local.min = std::min(local.min, quad_shape_[corners_[k] / 4]);
+      local.mean += quad_shape_[corners_[k] / 4];
     }
     local.mean /= offsets_[n + 1] - offsets_[n];
     return local;
   }
 
   int count_inverted() const {
-    return static_cast<int>(std::count_if(quad_sj_.begin(), quad_sj_.end(), [](double sj) { return sj <= 0.0; }));
+    return static_cast<int>(std::count_if(quad_shape_.begin(), quad_shape_.end(), [](double sj) { return sj <= 0.0; }));
   }
 
   double mean_squared_side(int n) const {
@@ -414,9 +419,9 @@ class Smoother {
   }
 
   // Whether boundary node n may go to parameter t: no interval shrinks
-  // below kShortestChord of its length before smoothing (quality alone would
-  // let a side collapse: the scaled Jacobian does not see a side's length),
-  // nor turns past its limit.
+  // below kShortestChord of its length before smoothing (the shape of the
+  // quads alone would let a boundary interval shrink well below the size
+  // asked for), nor turns past its limit.
   bool may_slide_to(const SlideBound& bound, double t) const {
     if (!bound.edge) return true;  // an interior node
     const int n = bound.node;
@@ -453,7 +458,7 @@ class Smoother {
     mesh_.nodes[n] = p;
     if (mesh_.places[n].loop >= 0) mesh_.places[n].t = t;
     for (int k = offsets_[n]; k < offsets_[n + 1]; ++k)
-      quad_sj_[corners_[k] / 4] = quad_value<true>(corners_[k] / 4, -1, {});
+      quad_shape_[corners_[k] / 4] = quad_value<true>(corners_[k] / 4, -1, {});
   }
 
   // Node n moved: the movable nodes of its quads are flagged to be handled again.
@@ -531,7 +536,7 @@ class Smoother {
   // Direct search for the position (or parameter) that best improves the
   // quality around the node: the Laplacian targets first, then compass
   // steps that halve when none helps. True if the node moved.
-  template <bool kScaled>
+  template <bool kShape>
   bool optimise_node(int n) {
     const Vec2 x0 = mesh_.nodes[n];
     const bool on_boundary = mesh_.places[n].loop >= 0;
@@ -545,11 +550,11 @@ class Smoother {
     }
     Vec2 best_p = x0;
     double best_t = t0;
-    LocalQuality best = local_quality<kScaled>(n, x0);
-    gather_star<kScaled>(n, star_);
+    LocalQuality best = local_quality<kShape>(n, x0);
+    gather_star<kShape>(n, star_);
     const auto consider = [&](Vec2 p, double t) {
       LocalQuality q;
-      if (!improves<kScaled>(star_, p, best, q) || !may_slide_to(bound, t)) return false;
+      if (!improves<kShape>(star_, p, best, q) || !may_slide_to(bound, t)) return false;
       best = q, best_p = p, best_t = t;
       return true;
     };
@@ -616,7 +621,7 @@ class Smoother {
     std::sort(quads.begin(), quads.end());
     quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
     const auto count = [&] {
-      return std::count_if(quads.begin(), quads.end(), [&](int q) { return quad_sj_[q] <= 0.0; });
+      return std::count_if(quads.begin(), quads.end(), [&](int q) { return quad_shape_[q] <= 0.0; });
     };
     const auto before = count();
     std::vector<Vec2> saved;
@@ -628,10 +633,10 @@ class Smoother {
           targets(n, parallelogram, centroid);
           mesh_.nodes[n] = centroid;
         }
-    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+    for (int q : quads) quad_shape_[q] = quad_value<true>(q, -1, {});
     if (count() < before) return;
     for (std::size_t k = 0; k < nodes.size(); ++k) mesh_.nodes[nodes[k]] = saved[k];
-    for (int q : quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+    for (int q : quads) quad_shape_[q] = quad_value<true>(q, -1, {});
   }
 
   // Lifts the least signed corner area around the nodes of inverted quads
@@ -641,8 +646,8 @@ class Smoother {
   // Laplacian relaxation of the region is tried once. Returns the passes.
   int untangle() {
     std::vector<int> inverted;
-    for (std::size_t q = 0; q < quad_sj_.size(); ++q)
-      if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
+    for (std::size_t q = 0; q < quad_shape_.size(); ++q)
+      if (quad_shape_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
     std::vector<char> listed(mesh_.quads.size(), 0);
     std::vector<int> nodes;
     std::size_t fewest = inverted.size();
@@ -657,7 +662,7 @@ class Smoother {
       // Only quads around the nodes just handled can have changed.
       std::vector<int> still;
       const auto keep = [&](int q) {
-        if (quad_sj_[q] <= 0.0 && !listed[q]) listed[q] = 1, still.push_back(q);
+        if (quad_shape_[q] <= 0.0 && !listed[q]) listed[q] = 1, still.push_back(q);
       };
       for (int q : inverted) keep(q);
       for (int n : nodes)
@@ -674,8 +679,8 @@ class Smoother {
           region(inverted, 2 * options_.untangle_rings, nodes);
           relax_region(nodes);
           inverted.clear();
-          for (std::size_t q = 0; q < quad_sj_.size(); ++q)
-            if (quad_sj_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
+          for (std::size_t q = 0; q < quad_shape_.size(); ++q)
+            if (quad_shape_[q] <= 0.0) inverted.push_back(static_cast<int>(q));
           fewest = inverted.size(), rings = 0, stalled = 0;
         } else {
           break;
@@ -685,11 +690,11 @@ class Smoother {
     return passes;
   }
 
-  // The highest minimum scaled Jacobian any placement of the nodes could
-  // reach for the mesh's irregular interior nodes: v corners round a node
-  // add up to 360 degrees, so the least of them is at most 360 / v degrees,
-  // or at least that for v < 4 (a valence-3 node has a corner of 120 degrees
-  // or more): sin(360 / v degrees) either way.
+  // The highest minimum shape any placement of the nodes could reach for
+  // the mesh's irregular interior nodes (shape is at most the scaled
+  // Jacobian, whose bound this is): v corners round a node add up to 360 degrees, so the least of them is at most 360 /
+  // v degrees, or at least that for v < 4 (a valence-3 node has a corner of 120 degrees or more): sin(360 / v degrees)
+  // either way.
   double irregular_node_bound() const {
     double bound = 1.0;
     for (std::size_t n = 0; n < mesh_.nodes.size(); ++n) {
@@ -708,14 +713,14 @@ class Smoother {
     std::vector<int> worst_quads, nodes;
     std::vector<char> awake(mesh_.nodes.size(), 1);
     for (int pass = 0; pass < kWorstPasses; ++pass) {
-      const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+      const double worst = *std::min_element(quad_shape_.begin(), quad_shape_.end());
       const double band = worst < kGoodEnough ? kWorstBand : kWorstBand * (1.0 - worst);
       worst_quads.clear();
-      for (std::size_t q = 0; q < quad_sj_.size(); ++q)
-        if (quad_sj_[q] < worst + band) worst_quads.push_back(static_cast<int>(q));
+      for (std::size_t q = 0; q < quad_shape_.size(); ++q)
+        if (quad_shape_[q] < worst + band) worst_quads.push_back(static_cast<int>(q));
       if (worst_quads.size() > kWorstQuads)
         std::nth_element(worst_quads.begin(), worst_quads.begin() + kWorstQuads, worst_quads.end(),
-                         [&](int a, int b) { return quad_sj_[a] < quad_sj_[b]; });
+                         [&](int a, int b) { return quad_shape_[a] < quad_shape_[b]; });
       nodes.clear();
       for (std::size_t k = 0; k < std::min(worst_quads.size(), kWorstQuads); ++k)
         for (int n : mesh_.quads[worst_quads[k]])
@@ -733,21 +738,21 @@ class Smoother {
   }
 
   // The nodes round the worst quads moved together (boundary nodes along
-  // their curves), by L-BFGS on a soft maximum of 1 / scaled Jacobian over
+  // their curves), by L-BFGS on a soft maximum of 1 / shape over
   // the corners of their quads. Node by node search stalls where a lattice
   // shears over several rows (each node's best move spoils a neighbour's
   // quad); moving them together spreads the shear over the region. Kept only
   // if the minimum rises, with every node within the bounds of the node
   // searches (sides, slide intervals, chords, turning). True if kept.
   bool spread_worst() {
-    const double worst = *std::min_element(quad_sj_.begin(), quad_sj_.end());
+    const double worst = *std::min_element(quad_shape_.begin(), quad_shape_.end());
     if (!(worst > 0.0) || worst >= kSpreadBelow) return false;
     std::vector<int> seeds, nodes;
-    for (std::size_t q = 0; q < quad_sj_.size(); ++q)
-      if (quad_sj_[q] < worst + kSpreadBand) seeds.push_back(static_cast<int>(q));
+    for (std::size_t q = 0; q < quad_shape_.size(); ++q)
+      if (quad_shape_[q] < worst + kSpreadBand) seeds.push_back(static_cast<int>(q));
     if (seeds.size() > kSpreadSeeds) {
       std::nth_element(seeds.begin(), seeds.begin() + kSpreadSeeds, seeds.end(),
-                       [&](int a, int b) { return quad_sj_[a] < quad_sj_[b]; });
+                       [&](int a, int b) { return quad_shape_[a] < quad_shape_[b]; });
       seeds.resize(kSpreadSeeds);
     }
     region(seeds, kSpreadRings, nodes);
@@ -779,12 +784,12 @@ class Smoother {
     lbfgs(static_cast<int>(x.size()), x.data(), &value, &Spread::evaluate, &Spread::progress, &spread, &parameters);
     bool kept = spread.put(x.data());
     if (kept) {
-      for (int q : spread.quads) quad_sj_[q] = quad_value<true>(q, -1, {});
-      kept = *std::min_element(quad_sj_.begin(), quad_sj_.end()) > worst;
+      for (int q : spread.quads) quad_shape_[q] = quad_value<true>(q, -1, {});
+      kept = *std::min_element(quad_shape_.begin(), quad_shape_.end()) > worst;
     }
     if (!kept) {
       spread.put_back();
-      for (int q : spread.quads) quad_sj_[q] = quad_value<true>(q, -1, {});
+      for (int q : spread.quads) quad_shape_[q] = quad_value<true>(q, -1, {});
     }
     return kept;
   }
@@ -903,8 +908,8 @@ class Smoother {
       return k - self.best_step >= kSpreadPatience ? 1 : 0;
     }
 
-    // (1 / p) log sum (scale / s)^p over the corners, s their scaled
-    // Jacobians, and its gradient; out of bounds, a value no step accepts.
+    // (1 / p) log sum (scale / s)^p over the corners, s their shapes, and
+    // its gradient; out of bounds, a value no step accepts.
     static double evaluate(void* instance, const double* x, double* g, int n, double /*step*/) {
       Spread& self = *static_cast<Spread*>(instance);
       std::fill(g, g + n, 0.0);
@@ -922,7 +927,8 @@ class Smoother {
           const int at = quad[i], next = quad[(i + 1) % 4], prev = quad[(i + 3) % 4];
           const Vec2 a = mesh.nodes[next] - mesh.nodes[at], b = mesh.nodes[prev] - mesh.nodes[at];
           const double la = side_length[i], lb = side_length[(i + 3) % 4];
-          const double s = cross(a, b) / (la * lb);
+          const double squares = la * la + lb * lb;
+          const double s = 2.0 * cross(a, b) / squares;
           if (!(s > kSpreadFloor)) return kOut;
           least = std::min(least, s);
           double w = self.scale / s;
@@ -930,8 +936,8 @@ class Smoother {
           sum += w;
           // dw / ds = -p w / s; the log's 1 / (p sum) is applied below.
           const double dw = -kSpreadPower * w / s;
-          const Vec2 ds_da = Vec2{b.y, -b.x} / (la * lb) - (s / (la * la)) * a;
-          const Vec2 ds_db = Vec2{-a.y, a.x} / (la * lb) - (s / (lb * lb)) * b;
+          const Vec2 ds_da = (2.0 / squares) * (Vec2{b.y, -b.x} - s * a);
+          const Vec2 ds_db = (2.0 / squares) * (Vec2{-a.y, a.x} - s * b);
           self.gradient[next] = self.gradient[next] + dw * ds_da;
           self.gradient[prev] = self.gradient[prev] + dw * ds_db;
           self.gradient[at] = self.gradient[at] - dw * (ds_da + ds_db);
@@ -963,7 +969,7 @@ class Smoother {
   std::vector<int> ahead_;
   std::vector<double> first_chord_behind_;  // boundary nodes' chords to those neighbours before smoothing
   std::vector<double> first_chord_ahead_;
-  std::vector<double> quad_sj_;
+  std::vector<double> quad_shape_;
   bool floor_untangling_ = true;  // the side floor holds while untangling
   std::vector<char> picked_;      // scratch flags of region()
   std::vector<StarQuad> star_;    // scratch of the node being moved

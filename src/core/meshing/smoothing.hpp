@@ -1,7 +1,8 @@
 #pragma once
 // Smoothing after the templates: moves interior nodes, and boundary nodes
 // along their exact curves by parameter, so that the worst element gets
-// better; untangles first when the placement folded an element.
+// better by Verdict's shape (angles and stretch together); untangles first
+// when the placement folded an element.
 #include <vector>
 
 #include "boundary/face_model.hpp"
@@ -25,15 +26,17 @@ struct SmoothingOptions {
   bool joint_search_only = false;
 };
 
+// Smoothing raises the least Verdict shape of the quads (quad_measures.hpp),
+// which sees both angle and stretch.
 struct SmoothingResult {
-  double min_scaled_jacobian_before = 0.0;
-  double min_scaled_jacobian_after = 0.0;
+  double min_shape_before = 0.0;
+  double min_shape_after = 0.0;
   int inverted_before = 0;
   int inverted_after = 0;
   int sweeps = 0;  // smoothing sweeps, untangling passes included
 };
 
-// Never lowers the minimum scaled Jacobian of a mesh with no inverted
+// Never lowers the minimum shape of a mesh with no inverted
 // element; face corners and options.fixed never move. Order-1 meshes only (throws
 // std::invalid_argument otherwise, and on nodes or places that do not fit
 // the mesh or the face). Boundary nodes keep their loop and edge, stay

@@ -269,15 +269,16 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
   add_stage(stages, "failed_attempts", seconds_since(t));
 }
 
-// The retry of a poor mesh: when its worst element is under kPoorMesh and
+// The retry of a poor mesh: when its worst element's Verdict shape is
+// under kPoorMesh and
 // a hole is run round by one submapped block, `make` meshes again with the
 // settings it was made with (`used`: those asked for, or the fallback's or
 // coarse retry's) and such holes framed by the splits along their corners' arms, and that
 // result replaces it (its stages in `passed`, the note) if its worst
 // element is better. The block's lattice wraps the hole and converges on
-// its corners (trimesh_boxsides_179's slots: 0.414 at 0.01 of the
-// diagonal, framed 0.675); but a small slot near the boundary meshes well
-// wrapped, and framed gets slanted blocks it does not need
+// its corners (trimesh_boxsides_179's slots: scaled Jacobian 0.414 at 0.01
+// of the diagonal, framed 0.675); but a small slot near the boundary meshes
+// well wrapped, and framed gets slanted blocks it does not need
 // (trimesh_boxsides_51: 0.843, framed 0.707), so only a poor mesh is
 // tried again. The time of whichever attempt is dropped goes to
 // failed_attempts.
@@ -302,7 +303,7 @@ void remesh_if_poor(const PipelineOptions& used, Meshed& meshed, StageSeconds& p
       passed = attempt;
       std::ostringstream text;
       if (!note.empty()) text << note << "; ";
-      text << "the worst element was " << before
+      text << "the worst element's shape was " << before
            << " with a hole one submapped block runs round; meshed again with such holes framed by splits along "
               "their corners' arms: "
            << after;
@@ -314,8 +315,8 @@ void remesh_if_poor(const PipelineOptions& used, Meshed& meshed, StageSeconds& p
   add_stage(stages, "failed_attempts", seconds_since(t));
 }
 
-double worst_scaled_jacobian(const QuadMesh& mesh) {
-  return measure_quality(mesh).min_scaled_jacobian;
+double worst_shape(const QuadMesh& mesh) {
+  return measure_quality(mesh).min_shape();
 }
 
 }  // namespace
@@ -399,7 +400,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
       options, {&flow}, meshed, used, passed, note, stages, make,
       [](const Meshed& m) { return m.second.coarser_than_asked; }, block_seconds);
   remesh_if_poor(
-      used, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_scaled_jacobian(m.second.mesh); },
+      used, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_shape(m.second.mesh); },
       [](const Meshed& m) { return !m.first.wrapped_holes.empty(); }, block_seconds);
   result.decomposition = std::move(meshed.first);
   result.blocks = std::move(meshed.second);
@@ -408,7 +409,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   for (const auto& [name, seconds] : result.blocks.stage_seconds) add_stage(stages, name, seconds);
   const auto t = Clock::now();
-  result.quality = measure_quality(result.blocks.mesh);
+  result.quality = measure_quality(result.blocks.mesh, used.meshing.size);
   stages.emplace_back("quality", seconds_since(t));
   result.quality.stage_seconds = stages;
   result.quality.seconds = seconds_since(start);
@@ -458,7 +459,7 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
       used, meshed, passed, note, stages, make,
       [](const Meshed& m) {
         double worst = 1.0;
-        for (const BlockMesh& f : m.second.faces) worst = std::min(worst, worst_scaled_jacobian(f.mesh));
+        for (const BlockMesh& f : m.second.faces) worst = std::min(worst, worst_shape(f.mesh));
         return worst;
       },
       [](const Meshed& m) {
@@ -479,7 +480,7 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     MeshedFace face;
     face.decomposition = std::move(decompositions[f]);
     face.blocks = std::move(blocks.faces[f]);
-    face.quality = measure_quality(face.blocks.mesh);
+    face.quality = measure_quality(face.blocks.mesh, used.meshing.size);
     face.quality.stage_seconds = face.blocks.stage_seconds;
     for (const auto& [name, seconds] : face.blocks.stage_seconds) add_stage(stages, name, seconds);
     result.faces.push_back(std::move(face));
