@@ -113,9 +113,30 @@ struct Measured {
   int irregular_interior = 0;
   double min_sj = 0.0;
   double mean_sj = 0.0;
+  double min_shape = 0.0;  // Verdict's shape: angles and stretch
+  double mean_shape = 0.0;
+  double max_edge_ratio = 0.0;
+  int needles = 0;              // quads with edge ratio over 10
+  int poor_shape = 0;           // quads with shape under 0.3
+  double sizes_in_range = 0.0;  // share of quads with sqrt(area) in [H/2, 3H/2]
   double seconds = 0.0;
   double block_seconds = 0.0;  // ours only: the block meshing stages alone
 };
+
+// The quality figures of the table, as text a child hands its parent.
+std::string verdict_text(const mm::QualityReport& q) {
+  std::ostringstream out;
+  out.precision(17);
+  out << q.min_scaled_jacobian << ' ' << q.mean_scaled_jacobian << ' ' << q.min_shape() << ' '
+      << q.measure(mm::Measure::Shape).mean << ' ' << q.measure(mm::Measure::EdgeRatio).max << ' ' << q.needles << ' '
+      << q.poor_shape << ' ' << q.sizes_in_range;
+  return out.str();
+}
+
+void read_verdict(std::istream& in, Measured& m) {
+  in >> m.min_sj >> m.mean_sj >> m.min_shape >> m.mean_shape >> m.max_edge_ratio >> m.needles >> m.poor_shape >>
+      m.sizes_in_range;
+}
 
 // ---------------------------------------------------------------- ours
 
@@ -139,9 +160,8 @@ Measured mesh_ours(const mm::FaceModel& face, double size, const std::string& sv
         if (!svg_path.empty()) write_svg(svg_path, face, meshed.decomposition, meshed.blocks.mesh, meshed.quality);
         std::ostringstream out;
         out.precision(17);
-        out << meshed.quality.quads << ' ' << meshed.quality.irregular_interior.size() << ' '
-            << meshed.quality.min_scaled_jacobian << ' ' << meshed.quality.mean_scaled_jacobian << ' ' << seconds << ' '
-            << block_seconds;
+        out << meshed.quality.quads << ' ' << meshed.quality.irregular_interior.size() << ' ' << seconds << ' '
+            << block_seconds << ' ' << verdict_text(meshed.quality);
         return out.str();
       },
       timeout);
@@ -149,7 +169,8 @@ Measured mesh_ours(const mm::FaceModel& face, double size, const std::string& sv
   m.failure = child.failure;
   if (m.failure.empty()) {
     std::istringstream in(child.output);
-    in >> m.quads >> m.irregular_interior >> m.min_sj >> m.mean_sj >> m.seconds >> m.block_seconds;
+    in >> m.quads >> m.irregular_interior >> m.seconds >> m.block_seconds;
+    read_verdict(in, m);
   }
   return m;
 }
@@ -229,7 +250,7 @@ mm::Vec2 to_face(const mm::Frame& frame, double x, double y, double z) {
 // nodes on curves and points marked as boundary nodes wanting the face's
 // corner type there (2 on a smooth boundary), then judged by measure_quality.
 // An interior node's valence counts Gmsh's left-over triangles too.
-Measured judge_gmsh(const std::string& text, const mm::FaceModel& face, mm::QuadMesh& mesh) {
+Measured judge_gmsh(const std::string& text, const mm::FaceModel& face, double size, mm::QuadMesh& mesh) {
   std::istringstream in(text);
   Measured m;
   in >> m.seconds;
@@ -294,11 +315,11 @@ Measured judge_gmsh(const std::string& text, const mm::FaceModel& face, mm::Quad
     for (auto& q : mesh.quads) std::swap(q[1], q[3]);
   }
 
-  const mm::QualityReport quality = mm::measure_quality(mesh);
+  const mm::QualityReport quality = mm::measure_quality(mesh, size);
   m.quads = quality.quads;
   m.triangles = static_cast<int>(triangles.size());
-  m.min_sj = quality.min_scaled_jacobian;
-  m.mean_sj = quality.mean_scaled_jacobian;
+  std::istringstream verdict(verdict_text(quality));
+  read_verdict(verdict, m);
   m.irregular_interior = static_cast<int>(quality.irregular_interior.size());
   if (!triangles.empty()) {
     std::map<std::size_t, int> triangles_at;
@@ -332,7 +353,7 @@ Measured mesh_gmsh(const std::string& path, const mm::FaceModel& face, double si
     return m;
   }
   mm::QuadMesh mesh;
-  Measured m = judge_gmsh(child.output, face, mesh);
+  Measured m = judge_gmsh(child.output, face, size, mesh);
   if (!svg_path.empty()) write_svg(svg_path, face, mm::Decomposition{}, mesh, mm::measure_quality(mesh));
   return m;
 }
@@ -385,21 +406,24 @@ std::string cell_failure(const Measured& m, std::vector<std::string>& notes, con
 }
 
 void print_comparison_row(const FaceRow& row, std::vector<std::string>& notes) {
+  const auto quality = [](const Measured& m) {
+    return fixed(m.min_shape, 3) + " | " + fixed(m.mean_shape, 3) + " | " + std::to_string(m.needles) + " | " +
+           std::to_string(m.poor_shape) + " | " + fixed(m.min_sj, 3);
+  };
   std::cout << "| " << row.name;
   if (row.ours.failure.empty()) {
-    std::cout << " | " << row.ours.quads << " | " << row.ours.irregular_interior << " | " << fixed(row.ours.min_sj, 3)
-              << " | " << fixed(row.ours.mean_sj, 3) << " | " << fixed(1e3 * row.ours.seconds, 1) << " | "
-              << fixed(1e3 * row.ours.block_seconds, 1);
+    std::cout << " | " << row.ours.quads << " | " << row.ours.irregular_interior << " | " << quality(row.ours) << " | "
+              << fixed(1e3 * row.ours.seconds, 1) << " | " << fixed(1e3 * row.ours.block_seconds, 1);
   } else {
-    std::cout << " | " << cell_failure(row.ours, notes, row.name + ", ours") << " | | | | |";
+    std::cout << " | " << cell_failure(row.ours, notes, row.name + ", ours") << " | | | | | | | | |";
   }
   for (std::size_t c = 0; c < kGmshConfigs.size(); ++c) {
     const Measured& g = row.gmsh[c];
     if (g.failure.empty()) {
-      std::cout << " | " << g.quads << " | " << g.triangles << " | " << g.irregular_interior << " | "
-                << fixed(g.min_sj, 3) << " | " << fixed(g.mean_sj, 3) << " | " << fixed(1e3 * g.seconds, 1);
+      std::cout << " | " << g.quads << " | " << g.triangles << " | " << g.irregular_interior << " | " << quality(g)
+                << " | " << fixed(1e3 * g.seconds, 1);
     } else {
-      std::cout << " | " << cell_failure(g, notes, row.name + ", " + kGmshConfigs[c].label) << " | | | | |";
+      std::cout << " | " << cell_failure(g, notes, row.name + ", " + kGmshConfigs[c].label) << " | | | | | | | | |";
     }
   }
   std::cout << " |\n";
@@ -411,8 +435,10 @@ void print_comparison_summary(const std::vector<FaceRow>& rows) {
   for (std::size_t c = 0; c < kGmshConfigs.size(); ++c) {
     const std::string& label = kGmshConfigs[c].label;
     int ours_irregular = 0, gmsh_irregular = 0, both_reference = 0;
-    int both = 0, ours_better = 0, gmsh_better = 0;
-    double ours_seconds = 0.0, gmsh_seconds = 0.0;
+    int both = 0, worst_at_least = 0, mean_at_least = 0, sj_better = 0;
+    int ours_needles = 0, gmsh_needles = 0, ours_poor = 0, gmsh_poor = 0, ours_quads = 0, gmsh_quads = 0;
+    int reference_under = 0;
+    double ours_seconds = 0.0, gmsh_seconds = 0.0, ours_sizes = 0.0, gmsh_sizes = 0.0;
     std::vector<double> ratios;
     for (const FaceRow& row : rows) {
       const Measured& g = row.gmsh[c];
@@ -422,22 +448,40 @@ void print_comparison_summary(const std::vector<FaceRow>& rows) {
         ++both_reference;
         ours_irregular += row.ours.irregular_interior;
         gmsh_irregular += g.irregular_interior;
+        reference_under += row.ours.min_shape < 0.3;
       }
-      ours_better += row.ours.min_sj > g.min_sj;
-      gmsh_better += g.min_sj > row.ours.min_sj;
+      worst_at_least += row.ours.min_shape >= g.min_shape;
+      mean_at_least += row.ours.mean_shape >= g.mean_shape;
+      sj_better += row.ours.min_sj > g.min_sj;
+      ours_needles += row.ours.needles, gmsh_needles += g.needles;
+      ours_poor += row.ours.poor_shape, gmsh_poor += g.poor_shape;
+      ours_quads += row.ours.quads, gmsh_quads += g.quads;
+      ours_sizes += row.ours.sizes_in_range * row.ours.quads, gmsh_sizes += g.sizes_in_range * g.quads;
       ours_seconds += row.ours.seconds;
       gmsh_seconds += g.seconds;
       ratios.push_back(g.seconds / row.ours.seconds);
     }
+    const double per_element = ours_seconds > 0 && gmsh_quads > 0
+                                   ? (gmsh_seconds / gmsh_quads) / (ours_seconds / std::max(1, ours_quads))
+                                   : 0.0;
     std::cout << "\n**Ours against " << label << "** (faces both meshed: " << both << " of " << rows.size() << ")\n"
+              << "- worst Verdict shape at least " << label << "'s on " << worst_at_least << " of " << both
+              << " faces, mean shape on " << mean_at_least
+              << "; reference faces with a worst shape under 0.3: " << reference_under << " of " << both_reference
+              << "\n"
+              << "- quads with edge ratio over 10: ours " << ours_needles << " of " << ours_quads << ", " << label
+              << " " << gmsh_needles << " of " << gmsh_quads << "; with shape under 0.3: ours " << ours_poor << ", "
+              << label << " " << gmsh_poor << "\n"
+              << "- quads with sqrt(area) within [H/2, 3H/2]: ours "
+              << fixed(100.0 * ours_sizes / std::max(1, ours_quads), 1) << " %, " << label << " "
+              << fixed(100.0 * gmsh_sizes / std::max(1, gmsh_quads), 1) << " %\n"
               << "- irregular interior nodes over the reference faces (" << both_reference << " of " << reference_faces
               << "): ours " << ours_irregular << ", " << label << " " << gmsh_irregular << "\n"
-              << "- min scaled Jacobian better: ours on " << ours_better << " faces, " << label << " on " << gmsh_better
-              << " (equal on " << both - ours_better - gmsh_better << ")\n"
+              << "- min scaled Jacobian better: ours on " << sj_better << " faces\n"
               << "- time ratio " << label << " / ours: total "
               << fixed(ours_seconds > 0 ? gmsh_seconds / ours_seconds : 0, 2) << " (" << fixed(1e3 * gmsh_seconds, 0)
               << " ms / " << fixed(1e3 * ours_seconds, 0) << " ms), per-face median " << fixed(median(ratios), 2)
-              << "\n";
+              << ", per element " << fixed(per_element, 2) << "\n";
   }
 }
 
@@ -474,14 +518,15 @@ void run_comparison(const fs::path& shared, double size_factor, const std::strin
             << " runs (each in a fresh child process, as Gmsh's), "
                "\"blocks ms\" = the block meshing stages alone. Gmsh: generate(2) alone, the least of as many runs. "
                "All meshes judged by "
-               "measure_quality in the face's own coordinates; SJ = scaled Jacobian (element minimum), irr = "
-               "irregular interior nodes.\n\n"
-            << "| face | ours quads | irr | min SJ | mean SJ | ms | blocks ms";
+               "measure_quality in the face's own coordinates (Verdict's measures, checked against VTK's "
+               "vtkMeshQuality): shape = Verdict shape, ER>10 = quads with edge ratio over 10, <0.3 = quads of shape "
+               "under 0.3, SJ = scaled Jacobian (element minimum), irr = irregular interior nodes.\n\n"
+            << "| face | ours quads | irr | min shape | mean shape | ER>10 | <0.3 | min SJ | ms | blocks ms";
   for (const GmshConfig& c : kGmshConfigs) {
-    std::cout << " | " << c.label << " quads | tris | irr | min SJ | mean SJ | ms";
+    std::cout << " | " << c.label << " quads | tris | irr | min shape | mean shape | ER>10 | <0.3 | min SJ | ms";
   }
   std::cout << " |\n|---|";
-  for (int i = 0; i < 6 + 6 * static_cast<int>(kGmshConfigs.size()); ++i) std::cout << "---:|";
+  for (int i = 0; i < 9 + 9 * static_cast<int>(kGmshConfigs.size()); ++i) std::cout << "---:|";
   std::cout << "\n";
 
   std::vector<FaceRow> rows;
