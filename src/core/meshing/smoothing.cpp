@@ -384,6 +384,9 @@ class Smoother {
   // How much the edge's tangent turns between two parameters (sampled).
   double turning(const BoundaryEdge& edge, double from, double to) const {
     if (std::holds_alternative<LineCurve>(edge.curve)) return 0.0;  // what the sampling gives a line, exactly
+    // A circle's parameter is its tangent's angle: the sampling's answer to
+    // rounding (its steps never reach pi), without a sine, cosine or atan2.
+    if (std::holds_alternative<CircleCurve>(edge.curve)) return std::abs(to - from);
     constexpr int kSteps = 8;
     double total = 0.0;
     Vec2 last = edge_point(edge, from).d1;
