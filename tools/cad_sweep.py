@@ -3,7 +3,8 @@
 """Meshes every planar face of the CAD files this machine's packages bring
 (OCCT's sample parts, FreeCAD's IDF library of electronic packages) and of
 ../shared/realcad/step with the medialmesh CLI at its default size, one
-process per face, and prints what failed, the worst meshes and the faces that
+process per face, and prints what failed, the worst meshes (by Verdict's
+shape), the counts of needles and poor quads, and the faces that
 needed a fallback. Real parts nobody here modelled: run it after changing a
 stage. Takes about 20 minutes on one core (big STEP files are read once per
 face). With --size-factor F each face is meshed again at H = F x its diagonal
@@ -55,6 +56,8 @@ def mesh_at(cli, path, face, size):
     if run.returncode == 0:
         report = json.loads(run.stdout)
         result.update(quads=report["quads"], min_scaled_jacobian=report["min_scaled_jacobian"],
+                      min_shape=report["measures"]["shape"]["min"], mean_shape=report["measures"]["shape"]["mean"],
+                      needles=report["counts"]["edge_ratio_above_10"], poor=report["counts"]["shape_below_0.3"],
                       irregular=report["irregular_interior"], notes=report.get("notes", []),
                       size=report["size"])
     else:
@@ -85,11 +88,17 @@ def main():
     print(f"{len(results)} planar faces in {len(args.files)} files: {len(meshed)} meshed "
           f"({len(fallback)} by a fallback), {len(failed)} stopped")
     for bound in (0.1, 0.2, 0.3):
-        print(f"min scaled Jacobian below {bound}: {sum(r['min_scaled_jacobian'] < bound for r in meshed)}")
+        print(f"min scaled Jacobian below {bound}: {sum(r['min_scaled_jacobian'] < bound for r in meshed)}; "
+              f"min shape below {bound}: {sum(r['min_shape'] < bound for r in meshed)}")
+    quads = sum(r["quads"] for r in meshed)
+    print(f"quads {quads}: with edge ratio over 10 {sum(r['needles'] for r in meshed)}, "
+          f"with shape under 0.3 {sum(r['poor'] for r in meshed)}; mean of the faces' mean shape "
+          f"{sum(r['mean_shape'] for r in meshed) / max(1, len(meshed)):.3f}")
     for r in failed:
         print(f"stopped: {os.path.basename(r['file'])} face {r['face']}: {r['error'].splitlines()[0][:300]}")
-    for r in sorted(meshed, key=lambda r: r["min_scaled_jacobian"])[:10]:
-        print(f"worst: {os.path.basename(r['file'])} face {r['face']}: {r['min_scaled_jacobian']:.3f}")
+    for r in sorted(meshed, key=lambda r: r["min_shape"])[:10]:
+        print(f"worst: {os.path.basename(r['file'])} face {r['face']}: shape {r['min_shape']:.3f}, "
+              f"scaled Jacobian {r['min_scaled_jacobian']:.3f}")
     for r in fallback:
         print(f"fallback: {os.path.basename(r['file'])} face {r['face']}: {r['notes'][0][-120:]}")
     return 0 if not failed else 1

@@ -205,6 +205,40 @@ TEST(FaceModel, RecognisesArcsStoredAsBSplines) {
   EXPECT_EQ(predicted_sum_k(face), -4);
 }
 
+// An arc of the circle of radius r round c from angle a through sweep (sense +1 or -1).
+BoundaryEdge circle_piece(Vec2 c, double r, double a, double sweep, int sense) {
+  return BoundaryEdge{CircleCurve{c, r, a, sense}, 0.0, sweep, 0, {}, {}};
+}
+
+TEST(FaceModel, AShortPieceOfACircleOrLineJoinsItsNeighbourOnTheSameCurve) {
+  // A circle cut at its seam 0.002 rad before closing (as a nut's outline
+  // comes from CAD), round a hole cut likewise but clockwise.
+  const double gap = 0.002;
+  const FaceModel ring = build_face_model(
+      raw({{circle_piece({0, 0}, 2.0, 0.0, 2 * kPi - gap, 1), circle_piece({0, 0}, 2.0, 2 * kPi - gap, gap, 1)},
+           {circle_piece({0, 0}, 1.0, 0.0, gap, -1), circle_piece({0, 0}, 1.0, -gap, 2 * kPi - gap, -1)}}));
+  for (const Loop& loop : ring.loops) {
+    ASSERT_EQ(loop.edges.size(), 1u);
+    EXPECT_NEAR(std::abs(loop.edges[0].t_end - loop.edges[0].t_start), 2 * kPi, 1e-12);
+    EXPECT_NEAR(distance(loop.edges[0].start, loop.edges[0].end), 0.0, 1e-12);
+  }
+  EXPECT_NEAR(ring.area, 3 * kPi, 1e-12);
+  // A square whose bottom side comes as a line of 0.001 and the rest.
+  const FaceModel square =
+      build_face_model(raw({{test::line({0, 0}, {0.001, 0}), test::line({0.001, 0}, {1, 0}), test::line({1, 0}, {1, 1}),
+                             test::line({1, 1}, {0, 1}), test::line({0, 1}, {0, 0})}}));
+  ASSERT_EQ(square.loops[0].edges.size(), 4u);
+  EXPECT_EQ(square.corners.size(), 4u);
+  EXPECT_NEAR(square.area, 1.0, 1e-15);
+  // Long pieces stay apart (a bore's halves), and so does a short piece that
+  // turns off its neighbour's line.
+  const FaceModel halves =
+      build_face_model(raw({{circle_piece({0, 0}, 2.0, 0.0, kPi, 1), circle_piece({0, 0}, 2.0, kPi, kPi, 1)}}));
+  EXPECT_EQ(halves.loops[0].edges.size(), 2u);
+  const FaceModel kinked = build_face_model(raw({test::polygon({{0, 0}, {0.001, 0}, {1, 0.01}, {1, 1}, {0, 1}})}));
+  EXPECT_EQ(kinked.loops[0].edges.size(), 5u);
+}
+
 TEST(FaceModel, KinksWithinTheSmoothAngleAreCornersOnlyWhenAsked) {
   // A rectangle whose top bends by 0.23 degrees at (1, 1.001); a quarter
   // circle meets a tangent line at (2, 0.5).

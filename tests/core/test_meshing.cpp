@@ -186,3 +186,26 @@ TEST(Meshing, CuspTipsAreNotCutIntoSlivers) {
 
 }  // namespace
 }  // namespace mm
+
+namespace mm {
+namespace {
+
+// A ring whose outer circle comes cut 0.002 rad before its seam (as a nut's
+// outline comes from CAD): the short piece's ends were nodes 0.004 apart,
+// and the elements there needles (occt_pumpnut_1: edge ratio 104, shape
+// 0.019). One circle now: a mesh of square-ish quads all round.
+TEST(Meshing, AShortPieceOfACircleLeavesNoNeedle) {
+  const double gap = 0.002;
+  const FaceModel ring = test::face({{BoundaryEdge{CircleCurve{{0, 0}, 2.0, 0.0, 1}, 0.0, 2 * kPi - gap, 0, {}, {}},
+                                      BoundaryEdge{CircleCurve{{0, 0}, 2.0, 2 * kPi - gap, 1}, 0.0, gap, 0, {}, {}}},
+                                     {test::full_circle({0, 0}, 1.0, -1)}});
+  PipelineOptions options;
+  options.meshing.size = 0.05 * ring.size;
+  const MeshedFace m = mesh_face(ring, options);
+  EXPECT_TRUE(test::mesh_validity_problems(ring, m.blocks.mesh).empty());
+  EXPECT_GT(m.quality.min_shape(), 0.5);
+  EXPECT_LT(m.quality.measure(Measure::EdgeRatio).max, 3.0);
+}
+
+}  // namespace
+}  // namespace mm

@@ -152,7 +152,11 @@ TEST(RealCadFaces, MatchTheIndex) {
     EXPECT_EQ(face.holes(), row.holes);
     std::size_t edges = 0;
     for (const Loop& loop : face.loops) edges += loop.edges.size();
-    EXPECT_EQ(static_cast<int>(edges), row.edges);
+    // The source's edges, less the short pieces of a circle joined to their
+    // neighbour on it: the nut's 0.048 seam piece, and two arcs of 4.57 of
+    // the interface plate (under a hundredth of its size).
+    const int joined = row.file == "occt_pumpnut_1.brep" ? 1 : row.file == "trimesh_baseiface_10.brep" ? 2 : 0;
+    EXPECT_EQ(static_cast<int>(edges), row.edges - joined);
     int sum = 0;
     for (const Corner& c : face.corners) {
       EXPECT_EQ(c.nc, optimal_corner_type(c.angle));
