@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   std::mt19937 rng(test::kCensusSeed);
   int meshed = 0, errors = 0;
   std::map<std::string, int> causes;
-  std::multimap<double, int> worst;  // min scaled Jacobian at order 1 -> face number
+  std::multimap<double, int> worst;        // min scaled Jacobian at order 1 -> face number
+  std::multimap<double, int> worst_shape;  // min Verdict shape at order 1 -> face number
+  long quads = 0, needles = 0, poor = 0;   // order 1: all quads, edge ratio over 10, shape under 0.3
   const std::regex numbers("-?[0-9]+(\\.[0-9]+)?(e-?[0-9]+)?");
   for (int number = 0; meshed + errors < faces; ++number) {
     FaceModel face;
@@ -59,7 +61,11 @@ int main(int argc, char** argv) {
           mesh_canvas.save("census_" + std::to_string(number) + "_mesh.svg");
           std::cout << "min scaled Jacobian " << m.quality.min_scaled_jacobian << "\n";
         }
-        if (order == 1) worst.emplace(m.quality.min_scaled_jacobian, number);
+        if (order == 1) {
+          worst.emplace(m.quality.min_scaled_jacobian, number);
+          worst_shape.emplace(m.quality.min_shape(), number);
+          quads += m.quality.quads, needles += m.quality.needles, poor += m.quality.poor_shape;
+        }
       } catch (const std::exception& e) {
         std::string what = e.what();
         if (verbose) {
@@ -89,14 +95,20 @@ int main(int argc, char** argv) {
     }
   }
   std::cout << "meshed " << meshed << " errors " << errors << "\n";
-  int below[3] = {0, 0, 0};
-  for (const auto& [jacobian, number] : worst)
-    for (int k = 0; k < 3; ++k) below[k] += jacobian < 0.1 * (k + 1) ? 1 : 0;
-  std::cout << "min scaled Jacobian below 0.1 / 0.2 / 0.3: " << below[0] << " / " << below[1] << " / " << below[2]
-            << "; worst faces:";
-  for (auto it = worst.begin(); it != worst.end() && std::distance(worst.begin(), it) < 8; ++it)
-    std::cout << " " << it->second << " (" << it->first << ")";
-  std::cout << "\n";
+  const auto report = [](const char* what, const std::multimap<double, int>& by) {
+    int below[3] = {0, 0, 0};
+    for (const auto& [value, number] : by)
+      for (int k = 0; k < 3; ++k) below[k] += value < 0.1 * (k + 1) ? 1 : 0;
+    std::cout << what << " below 0.1 / 0.2 / 0.3: " << below[0] << " / " << below[1] << " / " << below[2]
+              << "; worst faces:";
+    for (auto it = by.begin(); it != by.end() && std::distance(by.begin(), it) < 8; ++it)
+      std::cout << " " << it->second << " (" << it->first << ")";
+    std::cout << "\n";
+  };
+  report("min scaled Jacobian", worst);
+  report("min shape", worst_shape);
+  std::cout << "quads " << quads << ", with edge ratio over 10 " << needles << ", with shape under 0.3 " << poor
+            << "\n";
   std::multimap<int, std::string, std::greater<int>> sorted;
   for (const auto& [what, count] : causes) sorted.emplace(count, what);
   for (const auto& [count, what] : sorted) std::cout << count << "\t" << what << "\n";

@@ -136,7 +136,8 @@ std::optional<MeshedFace> valid_mesh_of(const std::string& name, double size_fac
   options.meshing.size = size_factor * face.size;
   try {
     MeshedFace m = mesh_face(face, options);
-    EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << name;
+    const std::vector<std::string> problems = test::mesh_validity_problems(face, m.blocks.mesh);
+    EXPECT_TRUE(problems.empty()) << name << ": " << ::testing::PrintToString(problems);
     EXPECT_GT(m.quality.min_scaled_jacobian, 0.0) << name;
     EXPECT_EQ(m.quality.inverted, 0) << name;
     return m;

@@ -36,6 +36,9 @@ constexpr double kCoarseShare = 0.4;
 // a fifth of the default size: 12 rings untangle 1, 16 rings 2, 24 rings 6.
 constexpr int kWideUntangleRings = 24;
 constexpr double kSmoothingGain = 1e-3;
+// A piece of a block side's boundary shorter than this fraction of the
+// target size joins its neighbour on the same edge (joined_boundary_pieces).
+constexpr double kShortestPiece = 0.1;
 
 // One piece of the outlines that gets one interval count: a run of a split
 // between two of its polyline points (a split is cut where it crosses the
@@ -351,8 +354,7 @@ class BlockMesher {
           if (r.inverted_after < best.inverted_after ||
               (r.inverted_after == best.inverted_after && r.min_shape_after > best.min_shape_after))
             best = r, mesh_ = trial;
-          if (r.inverted_after == 0 && r.min_shape_after < r.min_shape_before + kSmoothingGain)
-            break;
+          if (r.inverted_after == 0 && r.min_shape_after < r.min_shape_before + kSmoothingGain) break;
         }
       }
       // Last, the nodes round the worst elements moved together, on the
@@ -569,7 +571,7 @@ class BlockMesher {
       for (const BlockSide& side : block.sides) {
         std::vector<PieceUse> uses;
         std::vector<int> ids;
-        for (const OutlinePiece& piece : side.pieces) {
+        for (const OutlinePiece& piece : joined_boundary_pieces(side.pieces, kShortestPiece * options_.size)) {
           if (piece.split < 0) {
             for (int id : boundary_segments(piece)) {
               uses.push_back({id, false});
@@ -603,6 +605,44 @@ class BlockMesher {
       uses_.push_back(std::move(sides));
       shapes_.push_back(std::move(shape));
     }
+  }
+
+  // A side's pieces with a straight piece of boundary shorter than
+  // `shortest` joined to its neighbour on the same edge: the decomposition
+  // cuts a side where the medial axis touches it, and every piece gets an
+  // interval of its own however short (a near square of 6.691 x 6.698 had
+  // its sides cut 0.0073 apart: at 0.095 a row of elements that thin across
+  // the face, edge ratio 13). Longer pieces stay: they let interval
+  // assignment spread a side's intervals; joining every piece under half
+  // the size folded a keyed gear's bore and a fine trimesh_boxsides_179, and
+  // joining curved pieces put an element of a fuzz aerofoil across its
+  // section. No split ends between two pieces of one side (the outline
+  // would turn into it), so their meeting point is no other block's.
+  std::vector<OutlinePiece> joined_boundary_pieces(const std::vector<OutlinePiece>& pieces, double shortest) const {
+    const auto length = [](const OutlinePiece& piece) { return cumulative_length(piece.points).back(); };
+    const auto straight = [&](const OutlinePiece& piece) {
+      return std::holds_alternative<LineCurve>(face_.loops[piece.loop].edges[piece.edge].curve);
+    };
+    std::vector<OutlinePiece> joined;
+    for (const OutlinePiece& piece : pieces) {
+      if (!joined.empty()) {
+        OutlinePiece& last = joined.back();
+        // Contiguous in parameter: a closed curve's pieces either side of
+        // its seam are not (they meet at its start and end vertex).
+        const double span = std::abs(last.t_to - last.t_from) + std::abs(piece.t_to - piece.t_from);
+        if (last.split < 0 && piece.split < 0 && last.loop == piece.loop && last.edge == piece.edge &&
+            (last.t_to - last.t_from) * (piece.t_to - piece.t_from) > 0.0 &&
+            std::abs(piece.t_from - last.t_to) <= 1e-9 * span && straight(piece) &&
+            std::min(length(last), length(piece)) < shortest) {
+          last.t_to = piece.t_to;
+          last.points.insert(last.points.end(), piece.points.begin() + (piece.points.empty() ? 0 : 1),
+                             piece.points.end());
+          continue;
+        }
+      }
+      joined.push_back(piece);
+    }
+    return joined;
   }
 
   // A piece of boundary edge as segments, in its direction: one, or several
