@@ -1,6 +1,7 @@
 // The two mesh tables of the README, printed as markdown.
 //
 // --compare: every face of SHARED/geometry/*.brep and SHARED/realcad/faces/*.brep
+// (and with --cad-faces every planar face of SHARED/realcad/step)
 // meshed at H = 0.05 x the face's diagonal (--size-factor) by our pipeline (mesh_face, order 1,
 // default options) and by Gmsh on the same BREP file in two quad
 // configurations. Gmsh's quads are brought into the face's own coordinates and
@@ -18,6 +19,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <BRepTools.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -32,6 +37,7 @@
 #include <tuple>
 #include <vector>
 
+#include "occ/occ_face.hpp"
 #include "occ/occ_reader.hpp"
 #include "pipeline/pipeline.hpp"
 #include "svg/svg_writer.hpp"
@@ -383,12 +389,55 @@ std::vector<fs::path> brep_files(const fs::path& folder) {
   return files;
 }
 
+// Every planar face of the CAD files in SHARED/realcad/step, each written
+// as a BREP file of its own into `folder` (Gmsh meshes that file) and named
+// after its file and face number, less those a face of `known` already is
+// (the same area and diagonal: realcad/faces holds some of them).
+std::vector<fs::path> cad_face_files(const fs::path& shared, const fs::path& folder,
+                                     const std::vector<fs::path>& known) {
+  std::vector<std::pair<double, double>> known_sizes;
+  for (const fs::path& p : known) {
+    const mm::FaceModel face = mm::read_face_models(p.string(), {}).front();
+    known_sizes.emplace_back(face.area, face.size);
+  }
+  fs::create_directories(folder);
+  std::vector<fs::path> files;
+  std::vector<fs::path> sources;
+  for (const auto& entry : fs::directory_iterator(shared / "realcad" / "step")) sources.push_back(entry.path());
+  std::sort(sources.begin(), sources.end());
+  for (const fs::path& source : sources) {
+    TopTools_IndexedMapOfShape faces;
+    TopExp::MapShapes(mm::read_shape(source.string()), TopAbs_FACE, faces);
+    for (int i = 1; i <= faces.Extent(); ++i) {
+      const TopoDS_Face face = TopoDS::Face(faces(i));
+      mm::FaceModel model;
+      try {
+        model = mm::face_model_from_occ(face, source.stem().string());
+      } catch (const mm::InputError&) {
+        continue;  // not planar
+      }
+      const bool seen = std::any_of(known_sizes.begin(), known_sizes.end(), [&](const auto& k) {
+        return std::abs(k.first - model.area) < 1e-9 * k.first && std::abs(k.second - model.size) < 1e-9 * k.second;
+      });
+      if (seen) continue;
+      const fs::path path = folder / (source.stem().string() + "_face" + std::to_string(i) + ".brep");
+      BRepTools::Write(face, path.string().c_str());
+      files.push_back(path);
+    }
+  }
+  return files;
+}
+
 // The compared faces: every reference face (true: counted in the irregular
-// node total), then every real CAD face.
-std::vector<std::pair<fs::path, bool>> compared_faces(const fs::path& shared) {
+// node total), then every real CAD face, and with cad_folder every planar
+// face of realcad/step (cad_face_files).
+std::vector<std::pair<fs::path, bool>> compared_faces(const fs::path& shared, const std::string& cad_folder = "") {
   std::vector<std::pair<fs::path, bool>> files;
   for (const fs::path& p : brep_files(shared / "geometry")) files.emplace_back(p, true);
-  for (const fs::path& p : brep_files(shared / "realcad" / "faces")) files.emplace_back(p, false);
+  const std::vector<fs::path> real = brep_files(shared / "realcad" / "faces");
+  for (const fs::path& p : real) files.emplace_back(p, false);
+  if (!cad_folder.empty())
+    for (const fs::path& p : cad_face_files(shared, cad_folder, real)) files.emplace_back(p, false);
   return files;
 }
 
@@ -508,8 +557,8 @@ void keep_faster(Measured& best, const Measured& again) {
 }
 
 void run_comparison(const fs::path& shared, double size_factor, const std::string& svg_dir, int repeats,
-                    unsigned timeout) {
-  const std::vector<std::pair<fs::path, bool>> files = compared_faces(shared);
+                    unsigned timeout, const std::string& cad_folder) {
+  const std::vector<std::pair<fs::path, bool>> files = compared_faces(shared, cad_folder);
   std::cout << "## Ours against Gmsh " << gmsh_version(timeout) << " at H = " << size_factor
             << " x the face's diagonal\n\n"
             << "Ours: mesh_face, order 1, default options; time = the whole call (medial axis to quality), the "
@@ -753,7 +802,9 @@ const char* const kUsage =
     ").\n"
     "--scaling-face: a face of geometry/ (default plate_with_hole). --svg-dir: draw every compared mesh there.\n"
     "--timeout: seconds a single meshing may take before it counts as a timeout (default 600).\n"
-    "--size-factor: H for --compare and --stages as a fraction of each face's diagonal (default 0.05).\n";
+    "--size-factor: H for --compare and --stages as a fraction of each face's diagonal (default 0.05).\n"
+    "--cad-faces DIR: --compare also every planar face of SHARED/realcad/step, each written to DIR as a BREP\n"
+    "  file (those realcad/faces already holds left out).\n";
 
 }  // namespace
 
@@ -761,7 +812,7 @@ int main(int argc, char** argv) {
   bool compare = false, scaling = false, stages = false;
   int repeats = 3;
   fs::path shared = MM_SHARED_DIR;
-  std::string scaling_face = "plate_with_hole", svg_dir;
+  std::string scaling_face = "plate_with_hole", svg_dir, cad_folder;
   unsigned timeout = 600;
   double size_factor = 0.05;
   for (int i = 1; i < argc; ++i) {
@@ -781,6 +832,8 @@ int main(int argc, char** argv) {
       scaling_face = argv[++i];
     } else if (a == "--svg-dir" && has_value) {
       svg_dir = argv[++i];
+    } else if (a == "--cad-faces" && has_value) {
+      cad_folder = argv[++i];
     } else if (a == "--size-factor" && has_value) {
       char* end = nullptr;
       size_factor = std::strtod(argv[++i], &end);
@@ -798,7 +851,7 @@ int main(int argc, char** argv) {
   if (!compare && !scaling && !stages) compare = scaling = true;
   try {
     if (!svg_dir.empty()) fs::create_directories(svg_dir);
-    if (compare) run_comparison(shared, size_factor, svg_dir, repeats, timeout);
+    if (compare) run_comparison(shared, size_factor, svg_dir, repeats, timeout, cad_folder);
     if (scaling) run_scaling(shared, scaling_face, timeout);
     if (stages) run_stages(shared, size_factor, repeats, timeout);
   } catch (const std::exception& e) {
