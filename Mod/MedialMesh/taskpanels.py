@@ -38,6 +38,7 @@ PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
 MAX_QUADS = 2_000_000
 SHOW_PROGRESS_AFTER = 1.0  # seconds: shorter runs just finish
 NO_MERGING = 0.2  # the merge factor field's minimum, which stands for 0: no merging
+QUALITY_LINES = 9  # the quality summary: a heading, six lines, room to wrap
 
 
 def too_many_quads(faces, size, names):
@@ -54,10 +55,10 @@ def too_many_quads(faces, size, names):
 def quality_text(quality, separator=", "):
     return separator.join((
         f"{quality['quads']} quads, {quality['nodes']} nodes",
-        f"shape min {quality['min_shape']:.3f} mean {quality['mean_shape']:.3f}, "
+        f"shape min {quality['min_shape']:.3f} mean {quality['mean_shape']:.3f}",
         f"edge ratio max {quality['max_edge_ratio']:.1f}",
-        f"{quality['poor_shape']} quads of shape under 0.3, {quality['needles']} with sides over 10:1",
-        f"scaled Jacobian min {quality['min_scaled_jacobian']:.3f} mean {quality['mean_scaled_jacobian']:.3f}",
+        f"{quality['poor_shape']} of shape < 0.3, {quality['needles']} over 10:1",
+        f"scaled Jacobian min {quality['min_scaled_jacobian']:.3f}",
         f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s"))
 
 
@@ -150,6 +151,9 @@ class QuadMeshTaskPanel:
         self.quality.setObjectName("quality")
         self.quality.setWordWrap(True)
         self.quality.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        # FreeCAD's task box keeps the height it had when shown: room for the
+        # summary's lines (and a wrapped one or two) from the start.
+        self.quality.setMinimumHeight(QUALITY_LINES * self.quality.fontMetrics().lineSpacing())
         column.addWidget(self.quality)
         layout.addWidget(preview)
         layout.addStretch()

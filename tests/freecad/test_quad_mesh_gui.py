@@ -200,6 +200,10 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.look_at_plate(view)
         preview_picture = os.path.join(OUTPUT, "quad_mesh_gui_preview.png")
         view.saveImage(preview_picture, *SIZE, "White")
+        # The panel says the measures a FEM engineer checks, and the whole window shows them.
+        self.assertIn("shape min", text)
+        self.assertIn("edge ratio max", text)
+        FreeCADGui.getMainWindow().grab().save(os.path.join(OUTPUT, "quad_mesh_gui_window.png"))
 
         press(QtWidgets.QDialogButtonBox.Ok)
         self.assertFalse(FreeCADGui.Control.activeDialog())
