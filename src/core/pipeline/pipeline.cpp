@@ -270,11 +270,10 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
 }
 
 // The retry of a poor mesh: when its worst element's Verdict shape is
-// under kPoorMesh and
-// a hole is run round by one submapped block, `make` meshes again with the
-// settings it was made with (`used`: those asked for, or the fallback's or
-// coarse retry's) and such holes framed by the splits along their corners' arms, and that
-// result replaces it (its stages in `passed`, the note) if its worst
+// under kPoorMesh and a hole is run round by one submapped block, `make`
+// meshes again with the settings it was made with (`used`: those asked
+// for, or the fallback's or coarse retry's) and such holes framed by the
+// splits along their corners' arms, and that result replaces it (its stages in `passed`, the note) if its worst
 // element is better. The block's lattice wraps the hole and converges on
 // its corners (trimesh_boxsides_179's slots: scaled Jacobian 0.414 at 0.01
 // of the diagonal, framed 0.675); but a small slot near the boundary meshes
