@@ -94,7 +94,8 @@ def quad_mesh_and_calculix(doc, source, stem):
     result.Mesh.ViewObject.setNodeColorByScalars(result.NodeNumbers, result.vonMises)
     show_only(doc, [result.Mesh])
     FreeCADGui.ActiveDocument.ActiveView.saveImage(stem + ".stress.png", 1000, 800, "White")
-    return (f"{mesh.Label}: {mesh.QuadCount} 8-node quads, min scaled Jacobian {mesh.MinScaledJacobian:.3f}; "
+    return (f"{mesh.Label}: {mesh.QuadCount} 8-node quads, min shape {mesh.MinShape:.3f}, "
+            f"min scaled Jacobian {mesh.MinScaledJacobian:.3f}; "
             f"CalculiX: {FORCE:g} N on Edge{loaded + 1}, Edge{fixed + 1} fixed, max von Mises "
             f"{max(result.vonMises):.1f} MPa; wrote {stem}.mesh.png and {stem}.stress.png")
 
@@ -135,7 +136,8 @@ try:
               f"{decomposition.BlockCount} blocks ({decomposition.PolygonBlocks} polygon, "
               f"{decomposition.SubmapBlocks} submapped); wrote {stem}.FCStd and {stem}.png\n")
     out.write(f"freecad-demo: {quad_mesh.Label} (Quad mesh command, task panel accepted): {quad_mesh.QuadCount} "
-              f"quads, min scaled Jacobian {quad_mesh.MinScaledJacobian:.3f}, {quad_mesh.IrregularNodes} "
+              f"quads, min shape {quad_mesh.MinShape:.3f}, min scaled Jacobian {quad_mesh.MinScaledJacobian:.3f}, "
+              f"{quad_mesh.IrregularNodes} "
               f"irregular nodes; wrote {stem}.quadmesh.png\n")
     out.write(f"freecad-demo: {fem_summary}\n")
     status = 0
