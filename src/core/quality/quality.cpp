@@ -51,10 +51,6 @@ double quad_scaled_jacobian(const std::array<Vec2, 4>& p) {
   return worst;
 }
 
-double shoelace_area(const std::array<Vec2, 4>& p) {
-  return 0.5 * (cross(p[0], p[1]) + cross(p[1], p[2]) + cross(p[2], p[3]) + cross(p[3], p[0]));
-}
-
 void check_mesh(const QuadMesh& mesh) {
   const int n = static_cast<int>(mesh.nodes.size());
   if (mesh.places.size() != mesh.nodes.size())
@@ -172,8 +168,8 @@ QualityReport measure_quality(const QuadMesh& mesh, double size) {
       report.worst_element = static_cast<int>(q);
     }
     sum_jacobian += element_jacobian;
-    report.area += shoelace_area(p);
     const QuadMeasures measures = measure_quad(p);
+    report.area += measures.area;
     add_measures(report, static_cast<int>(q), centroid(p), measures);
     if (mesh.order() == 2) {
       const auto& mid = mesh.midside[q];
@@ -265,8 +261,6 @@ QualityReport combine_quality(const std::vector<QualityReport>& faces, const std
         report.sizes_in_range += q.sizes_in_range * q.quads;
         sized_quads += q.quads;
       }
-    }
-    if (q.quads > 0) {
       if (!any || q.min_scaled_jacobian < report.min_scaled_jacobian) {
         report.min_scaled_jacobian = q.min_scaled_jacobian;
         report.worst_element = first_quad + q.worst_element;
