@@ -3,10 +3,15 @@
 // the mesh command with --face given twice, its .inp read back by meshio.
 #include <gtest/gtest.h>
 
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRep_Builder.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <array>
 #include <cstdio>
@@ -17,6 +22,7 @@
 #include <sstream>
 
 #include "mesh_checks.hpp"
+#include "occ/occ_face.hpp"
 #include "occ/occ_reader.hpp"
 #include "pipeline/pipeline.hpp"
 #include "test_support.hpp"
@@ -140,6 +146,83 @@ TEST(MultiFaceOcc, SheetMetalUAndItsFiveNeighboursMeshTogether) {
     EXPECT_TRUE(test::mesh_problems(faces[f], m.faces[f].blocks.mesh, 4.0).empty()) << faces[f].name;
   for (const auto& [side, count] : side_uses(m.mesh)) EXPECT_LE(count, 2);
   EXPECT_EQ(m.quality.inverted, 0);
+}
+
+// Every solid of the shared CAD files with all its planar faces meshed at
+// once, as a shell model of the part needs: the faces that mesh alone mesh
+// together, each face's mesh valid, no element side in more quads than
+// faces meet there, and the nodes of shared pieces joined once.
+TEST(MultiFaceOcc, EverySolidOfTheSharedStepFilesMeshesWhole) {
+  int solids_meshed = 0;
+  for (const char* file : {"trimesh_featuretype.STEP", "trimesh_base_interface_AP214.STEP"}) {
+    const std::string path = test::shared_dir() + "/realcad/step/" + file;
+    const TopoDS_Shape shape = read_shape(path);
+    TopTools_IndexedMapOfShape file_faces;
+    TopExp::MapShapes(shape, TopAbs_FACE, file_faces);
+    for (TopExp_Explorer solid(shape, TopAbs_SOLID); solid.More(); solid.Next()) {
+      std::vector<int> planar;
+      bool every_face_planar = true;
+      for (TopExp_Explorer f(solid.Current(), TopAbs_FACE); f.More(); f.Next()) {
+        const bool plane = BRepAdaptor_Surface(TopoDS::Face(f.Current())).GetType() == GeomAbs_Plane;
+        every_face_planar = every_face_planar && plane;
+        const int index = file_faces.FindIndex(f.Current());
+        if (plane && std::find(planar.begin(), planar.end(), index) == planar.end()) planar.push_back(index);
+      }
+      if (planar.size() < 2) continue;
+      const std::vector<FaceModel> faces = read_face_models(path, planar);
+      double diagonal = 0.0;
+      for (const FaceModel& f : faces) diagonal = std::max(diagonal, f.size);
+      const double size = diagonal / 20.0;
+      PipelineOptions alone;
+      alone.meshing.size = size;
+      for (const FaceModel& f : faces) ASSERT_NO_THROW(mesh_face(f, alone)) << f.name;
+      MeshedFaces m;
+      ASSERT_NO_THROW(m = mesh_all(faces, size)) << path << " solid of faces " << planar.front() << "...";
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        EXPECT_TRUE(test::mesh_validity_problems(faces[f], m.faces[f].blocks.mesh).empty()) << faces[f].name;
+      const auto uses = side_uses(m.mesh);
+      for (const auto& [side, count] : uses) EXPECT_LE(count, 2) << path;
+      if (every_face_planar)
+        for (const auto& [side, count] : uses) EXPECT_EQ(count, 2) << path << ": a closed shell is open";
+      EXPECT_EQ(m.quality.inverted, 0);
+      ++solids_meshed;
+    }
+  }
+  EXPECT_EQ(solids_meshed, 2);  // one solid in each file
+}
+
+// Faces taken from OCCT's sample parts (occt-misc), at the size meshing
+// their whole solid asks for (a twentieth of its largest face's diagonal):
+// - CrankArm.brep faces 24 and 25: edge tolerances of 0.0095 beside an edge
+//   of 0.076, whose two ends are two nodes of one face, not a failure to join;
+// - MODERN_Chair_1.brep faces 42, 50 and 65: face 50's splits ended 4.6e-6
+//   from a tangent join of a line and an ellipse, a piece no element fits;
+// - mal_tige.brep's planar faces: edge tolerances of 1.57 on a 180 mm rod,
+//   ten times which took an interior node 3.7 from a shared one as one point.
+TEST(MultiFaceOcc, FacesOfLooseFilesAndTangentJoinsMeshTogether) {
+  const std::string data = std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/";
+  struct Case {
+    std::string file;
+    std::vector<int> faces;
+    double size;
+    int shared_edges;
+  };
+  for (const Case& c :
+       {Case{"crankarm_faces_24_25.brep", {1, 2}, 4.668, 1}, Case{"chair_faces_42_50_65.brep", {1, 2, 3}, 4.586, 2},
+        Case{"mal_tige_planar_faces.brep", {1, 2, 3, 4}, 11.7, 4}}) {
+    const std::vector<FaceModel> faces = read_face_models(data + c.file, c.faces);
+    MeshedFaces m;
+    ASSERT_NO_THROW(m = mesh_all(faces, c.size)) << c.file;
+    EXPECT_EQ(shared_edge_count(m.shared), c.shared_edges) << c.file;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      EXPECT_TRUE(test::mesh_validity_problems(faces[f], m.faces[f].blocks.mesh).empty()) << faces[f].name;
+    for (const auto& [side, count] : side_uses(m.mesh)) EXPECT_LE(count, 2) << c.file;
+  }
+  // The chair's end cap alone, fine: no element across the 4.6e-6 piece.
+  const FaceModel cap = read_face_models(data + "chair_faces_42_50_65.brep", {2}).front();
+  PipelineOptions fine;
+  fine.meshing.size = 0.2;
+  EXPECT_GT(mesh_face(cap, fine).quality.min_shape(), 0.5);
 }
 
 TEST(MultiFaceCommand, TwoFacesWriteOneInpThatMeshioReads) {

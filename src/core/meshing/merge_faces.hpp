@@ -13,8 +13,8 @@ namespace mm {
 // a shared node takes the position of the face listed first. Throws
 // SelfCheckError naming both faces and their edges when a shared node's
 // partner lies further than the tolerance from it, and naming the faces when
-// the whole fails a check: two nodes within the tolerance left apart where a
-// piece is shared, a collapsed element side, an element side in more
+// the whole fails a check: two nodes of no common face within the tolerance
+// left apart where a piece is shared, a collapsed element side, an element side in more
 // elements than faces meet there (two inside a face), or a shared piece's
 // side left open.
 MergedMesh merge_face_meshes(const std::vector<FaceModel>& faces, const std::vector<const QuadMesh*>& meshes,

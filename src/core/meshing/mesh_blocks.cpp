@@ -39,6 +39,9 @@ constexpr double kSmoothingGain = 1e-3;
 // A piece of a block side's boundary shorter than this fraction of the
 // target size joins its neighbour on the same edge (joined_boundary_pieces).
 constexpr double kShortestPiece = 0.1;
+// Faces meshed together: points of two faces are one when closer than ten
+// times the file's tolerance, but never than this fraction of the size.
+constexpr double kMostTolerance = 0.05;
 
 // One piece of the outlines that gets one interval count: a run of a split
 // between two of its polyline points (a split is cut where it crosses the
@@ -80,7 +83,11 @@ struct Stretch {
   double high = 0.0;
   double length = 0.0;
   std::vector<int> segments;
-  bool along(const Segment& s) const { return (s.t_to - s.t_from) * (high - low) > 0.0; }
+  // Whether segment j runs in the stretch's direction: fixed when the
+  // stretch is made, as moving a joint may leave a segment of no length
+  // for a moment (its other end not yet moved), which has no direction.
+  std::vector<bool> forward;
+  bool along(std::size_t j) const { return forward[j]; }
 };
 
 // A boundary piece sampled finely in its parameter: cumulative chord length
@@ -401,16 +408,40 @@ class BlockMesher {
     const int k = st.segments[j + 1];
     Segment& before = segments_[i];
     Segment& after = segments_[k];
-    const int v = vertex_of_end_[2 * i + (st.along(before) ? 1 : 0)];
-    if (v != vertex_of_end_[2 * k + (st.along(after) ? 0 : 1)])
+    const bool before_along = st.along(j), after_along = st.along(j + 1);
+    const int v = vertex_of_end_[2 * i + (before_along ? 1 : 0)];
+    if (v != vertex_of_end_[2 * k + (after_along ? 0 : 1)])
       fail("two pieces of a shared edge do not meet at one vertex");
-    const double from = st.along(before) ? before.t_from : before.t_to;
-    const double to = st.along(after) ? after.t_to : after.t_from;
+    // Searched up to the stretch's end, not only the next segment's: the
+    // other face's nodes may lie further on than this face's own joints
+    // (a face's splits meet an edge unevenly), and the later joints follow.
+    const Segment& last = segments_[st.segments.back()];
+    const double from = before_along ? before.t_from : before.t_to;
+    const double to = st.along(st.segments.size() - 1) ? last.t_to : last.t_from;
     const double t = closest_param(edge_of(before), from, to, target).first;
-    (st.along(before) ? before.t_to : before.t_from) = t;
-    (st.along(after) ? after.t_from : after.t_to) = t;
+    (before_along ? before.t_to : before.t_from) = t;
+    (after_along ? after.t_from : after.t_to) = t;
     mesh_.nodes[v] = edge_point(edge_of(before), t).p;
     mesh_.places[v].t = t;
+  }
+
+  // The points a stretch's nodes take when this face places them, in the
+  // stretch's direction: each segment's ends and its counts[i] - 1 inner
+  // nodes by arc length (as place_segment_nodes puts them).
+  std::vector<Vec2> stretch_points(const Stretch& st, const std::vector<int>& counts) const {
+    std::vector<Vec2> points;
+    for (std::size_t j = 0; j < st.segments.size(); ++j) {
+      const Segment& s = segments_[st.segments[j]];
+      const int n = counts[st.segments[j]];
+      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, std::max(64, 16 * n));
+      std::vector<Vec2> own{samples.points.front()};
+      for (int k = 1; k < n; ++k)
+        own.push_back(edge_point(edge_of(s), param_at_length(samples, samples.arc.back() * k / n)).p);
+      own.push_back(samples.points.back());
+      if (!st.along(j)) std::reverse(own.begin(), own.end());
+      points.insert(points.end(), own.begin() + (points.empty() ? 0 : 1), own.end());
+    }
+    return points;
   }
 
   Vec2 segment_end(const Segment& s, bool last) const {
@@ -1372,7 +1403,10 @@ std::vector<Stretch> face_stretches(const BlockMesher& m, const EdgeCuts& cuts) 
     st.low = low_end(segments[st.segments.front()]);
     const Segment& last = segments[st.segments.back()];
     st.high = low_end(last) == last.t_from ? last.t_to : last.t_from;
-    for (int i : st.segments) st.length += segments[i].length;
+    for (int i : st.segments) {
+      st.length += segments[i].length;
+      st.forward.push_back((segments[i].t_to - segments[i].t_from) * (st.high - st.low) > 0.0);
+    }
     stretches.push_back(std::move(st));
   }
   return stretches;
@@ -1405,7 +1439,13 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     throw std::invalid_argument("mesh_blocks_together: " + std::to_string(faces.size()) + " faces but " +
                                 std::to_string(decompositions.size()) + " decompositions");
   FaceSetBlockMesh result;
-  for (const FaceModel& f : faces) result.tolerance = std::max({result.tolerance, 1e-5 * f.size, 10.0 * f.tolerance});
+  // Ten times the file's own tolerance, but never a sizeable part of an
+  // element: some files carry edge tolerances of a millimetre on parts of
+  // a few centimetres (OCCT's mal_tige.brep: 1.57 on a 180 mm rod), and
+  // nodes of one element that far apart are not one point.
+  for (const FaceModel& f : faces)
+    result.tolerance =
+        std::max({result.tolerance, 1e-5 * f.size, std::min(10.0 * f.tolerance, kMostTolerance * options.size)});
   const double tolerance = result.tolerance;
   std::vector<Box3> boxes;
   for (const FaceModel& f : faces) boxes.push_back(face_box(f, tolerance));
@@ -1472,6 +1512,17 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     }
   }
 
+  // The stretch of each class that places its nodes: the one cut into the
+  // most segments (most split ends on it), whose joints then stay where its
+  // decomposition put them; the others move their fewer joints to its nodes.
+  std::vector<int> placer(stretches.size());
+  for (std::size_t i = 0; i < stretches.size(); ++i) placer[i] = find_root(parent, static_cast<int>(i));
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    int& p = placer[find_root(parent, static_cast<int>(i))];
+    if (stretches[i].segments.size() > stretches[p].segments.size()) p = static_cast<int>(i);
+  }
+  for (std::size_t i = 0; i < stretches.size(); ++i) placer[i] = placer[find_root(parent, static_cast<int>(i))];
+
   // One interval assignment: a count per segment, a shared stretch's
   // segments in every face summing alike.
   const auto global = [&](const Stretch& st) {
@@ -1528,18 +1579,27 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   }
   const auto t1 = std::chrono::steady_clock::now();
 
-  // Placement face by face. The first face places a shared stretch's nodes;
-  // a later face moves its own segment ends on the stretch (where its splits
-  // meet it) to the nodes its counts reach, and puts its nodes there.
+  // Placement face by face. The placing stretch's nodes are known from the
+  // counts alone; every other face moves its own segment ends on the
+  // stretch (where its splits meet it) to the nodes its counts reach, and
+  // puts its nodes there.
+  std::vector<std::vector<Point3>> placed_points(stretches.size());
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const Stretch& st = stretches[i];
+    if (placer[i] != static_cast<int>(i) || !meshers[st.face]->segments()[st.segments.front()].shared) continue;
+    const std::vector<int> counts(intervals.counts.begin() + offset[st.face],
+                                  intervals.counts.begin() + offset[st.face + 1]);
+    for (const Vec2& p : meshers[st.face]->stretch_points(st, counts))
+      placed_points[i].push_back(to_3d(faces[st.face].frame, p));
+  }
   std::vector<std::vector<int>> run_nodes(stretches.size());
   const auto collect_run = [&](std::size_t i) {
     const Stretch& st = stretches[i];
     const BlockMesher& m = *meshers[st.face];
     std::vector<int>& run = run_nodes[i];
-    for (int seg : st.segments) {
-      const Segment& s = m.segments()[seg];
-      std::vector<int> nodes = s.nodes;
-      if (!st.along(s)) std::reverse(nodes.begin(), nodes.end());
+    for (std::size_t j = 0; j < st.segments.size(); ++j) {
+      std::vector<int> nodes = m.segments()[st.segments[j]].nodes;
+      if (!st.along(j)) std::reverse(nodes.begin(), nodes.end());
       run.insert(run.end(), nodes.begin() + (run.empty() ? 0 : 1), nodes.end());
     }
   };
@@ -1550,13 +1610,11 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     const std::vector<int> counts(intervals.counts.begin() + offset[f], intervals.counts.begin() + offset[f + 1]);
     const std::size_t first_stretch = next_stretch;
     for (; next_stretch < stretches.size() && stretches[next_stretch].face == static_cast<int>(f); ++next_stretch) {
-      const int root = find_root(parent, static_cast<int>(next_stretch));
-      if (root == static_cast<int>(next_stretch)) continue;
+      const int source = placer[next_stretch];
+      if (source == static_cast<int>(next_stretch)) continue;
       const Stretch& st = stretches[next_stretch];
-      const Stretch& source = stretches[root];
-      std::vector<Point3> run;
-      for (int n : run_nodes[root]) run.push_back(to_3d(faces[source.face].frame, meshers[source.face]->node(n)));
-      if (reversed[next_stretch]) std::reverse(run.begin(), run.end());
+      std::vector<Point3> run = placed_points[source];
+      if (reversed[next_stretch] != reversed[source]) std::reverse(run.begin(), run.end());
       std::size_t at = 0;
       for (std::size_t j = 0; j < st.segments.size(); ++j) {
         Segment& s = m.segment(st.segments[j]);
@@ -1565,7 +1623,7 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
         if (j + 1 < st.segments.size()) m.move_joint(st, j, in_plane(faces[f].frame, run[at + n]));
         s.targets.clear();
         for (std::size_t k = 1; k < n; ++k) s.targets.push_back(in_plane(faces[f].frame, run[at + k]));
-        if (!st.along(s)) std::reverse(s.targets.begin(), s.targets.end());
+        if (!st.along(j)) std::reverse(s.targets.begin(), s.targets.end());
         at += n;
       }
     }
@@ -1578,9 +1636,9 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
   }
   const auto t2 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < stretches.size(); ++i) {
-    const int root = find_root(parent, static_cast<int>(i));
-    if (root == static_cast<int>(i)) continue;
-    const Stretch& a = stretches[root];
+    const int source = placer[i];
+    if (source == static_cast<int>(i)) continue;
+    const Stretch& a = stretches[source];
     const Stretch& b = stretches[i];
     SharedPiece piece;
     piece.face_a = a.face;
@@ -1589,9 +1647,9 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     piece.edge_b = faces[b.face].loops[b.loop].edges[b.edge].source_index;
     piece.loop_edge_a = {a.loop, a.edge};
     piece.loop_edge_b = {b.loop, b.edge};
-    piece.nodes_a = run_nodes[root];
+    piece.nodes_a = run_nodes[source];
     piece.nodes_b = run_nodes[i];
-    if (reversed[i]) std::reverse(piece.nodes_b.begin(), piece.nodes_b.end());
+    if (reversed[i] != reversed[source]) std::reverse(piece.nodes_b.begin(), piece.nodes_b.end());
     result.shared.push_back(std::move(piece));
   }
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };

@@ -56,7 +56,7 @@ BlockMesh mesh_blocks(const FaceModel& face, const Decomposition& decomposition,
 // A piece of boundary two faces meshed together share: the same 3-D curve
 // between the same two points, with the same nodes (one stretch, see below).
 struct SharedPiece {
-  int face_a = -1;  // the face that placed the nodes (the lower index)
+  int face_a = -1;  // the face that placed the nodes
   int face_b = -1;
   int edge_a = 0;  // the piece's edge in each face, 1-based source numbers (FreeCAD's EdgeN)
   int edge_b = 0;
@@ -74,7 +74,10 @@ int shared_edge_count(const std::vector<SharedPiece>& shared);
 struct FaceSetBlockMesh {
   std::vector<BlockMesh> faces;
   std::vector<SharedPiece> shared;
-  double tolerance = 0.0;  // how far apart points may be and still be one
+  // How far apart points may be and still be one: ten times the largest
+  // tolerance the faces were read with, at least 1e-5 of a face's diagonal,
+  // at most a twentieth of the element size.
+  double tolerance = 0.0;
 };
 
 // Meshes several faces so that the pieces of boundary they share in 3-D get
@@ -85,10 +88,11 @@ struct FaceSetBlockMesh {
 // own segments (its splits' ends), so other faces' splits do not cut it into
 // more pieces that each need an interval; one interval assignment for all
 // faces makes a shared stretch's segments sum alike in every face. The
-// lower face places the stretch's nodes by arc length; a later face moves
-// its own split ends on the stretch along the edge to the nodes its counts
-// reach, and puts its other nodes on its own curve nearest to the lower
-// face's. Each face's mesh is then finished and checked as mesh_blocks'.
+// face whose stretch holds the most segments (split ends) places its nodes
+// by arc length segment by segment; every other face moves its own split
+// ends on the stretch along the edge to the nodes its counts reach, and
+// puts its other nodes on its own curve nearest to the placing face's.
+// Each face's mesh is then finished and checked as mesh_blocks'.
 // Throws as mesh_blocks; when the faces' blocks cannot be given counts
 // together, the SelfCheckError names all the faces.
 FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
