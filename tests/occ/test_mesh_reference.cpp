@@ -291,37 +291,20 @@ TEST(MeshReference, AFoldInAFineMeshIsUntangledFromFurtherOut) {
 
 // Two pins of an SOT404 package (FreeCAD's IDF library) drawn as one face,
 // joined along their tops by a channel 1e-6 wide (7.7e-7 of the face's
-// size). The channel's two sides were taken as one place (within 1e-6 of
-// the size), so the axis lost the channel and the left pin: a connected
-// axis of the right pin alone, caught only by the mesh flow's sum of k.
-// Places count as one only if they are also close along their loop now,
-// and the axis's self-check asks for a flare at every convex corner.
-TEST(MeshReference, PinsJoinedByANeckNarrowerThanTheToleranceMeshWhole) {
-  const FaceModel face = test::data_face("sot404_pins_joined_by_a_neck");
-  const MedialAxis axis = compute_medial_axis(face);
-  const auto flares = std::count_if(axis.vertices.begin(), axis.vertices.end(),
-                                    [](const MedialVertex& v) { return v.kind == MedialVertexKind::Flare; });
-  EXPECT_EQ(flares, 6);  // the pins' eight corners less the channel's two reflex ones
-  int in_channel = 0;    // the channel runs from x = 2.12 to 2.92 along the pins' tops
-  for (const MedialEdge& e : axis.edges) {
-    for (const MedialPoint& p : e.points) {
-      if (p.p.x < 2.2 || p.p.x > 2.8) continue;
-      ++in_channel;
-      EXPECT_GT(p.r, 1e-7);  // half the channel's width, 0.6e-6 to 1e-6
-      EXPECT_LT(p.r, 1e-6);
-    }
+// size): the outline runs along the top and back along the channel. Until
+// 2026-12-07 it was meshed whole, with elements 1e-6 wide across the
+// channel (Verdict shape under 1e-4, corners under 0.1 degree) that joined the pins
+// in a FEM model and could not be shared with the pins' side faces; it is
+// refused now, naming where the outline runs back along itself.
+TEST(MeshReference, PinsJoinedByAChannelNarrowerThanTheToleranceAreRefusedByName) {
+  try {
+    test::data_face("sot404_pins_joined_by_a_neck");
+    FAIL() << "a face whose outline runs back along itself was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("runs back along itself from (2.92001, 3.42867) to (2.12001, 3.42867)"),
+              std::string::npos)
+        << e.what();
   }
-  EXPECT_GT(in_channel, 0);
-  const MeshedFace m = meshed(face);
-  EXPECT_TRUE(test::mesh_problems(face, m.blocks.mesh, 0.05 * face.size).empty());
-  EXPECT_EQ(m.quality.inverted, 0);
-  // Both pins are meshed: nodes left of the channel and right of it.
-  const auto left =
-      std::count_if(m.blocks.mesh.nodes.begin(), m.blocks.mesh.nodes.end(), [](Vec2 p) { return p.x < 2.1; });
-  const auto right =
-      std::count_if(m.blocks.mesh.nodes.begin(), m.blocks.mesh.nodes.end(), [](Vec2 p) { return p.x > 2.95; });
-  EXPECT_GE(left, 15);
-  EXPECT_GE(right, 15);
 }
 
 TEST(MeshReference, QuadraticElementsPutMidSideNodesOnTheCurves) {

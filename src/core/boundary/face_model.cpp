@@ -27,6 +27,9 @@ constexpr double kSameCurveTolerance = 1e-6;
 // A piece of a circle or line shorter than this fraction of the face's size
 // is joined to its neighbour on the same curve (join_pieces_of_one_curve).
 constexpr double kShortPiece = 1e-2;
+// Circular edges in a row whose centres and radii agree within this
+// fraction of the face's size are taken as arcs of one circle.
+constexpr double kSameCircleTolerance = 1e-4;
 // Tangents closer than this to opposite directions make a (near) cusp.
 constexpr double kCuspAngle = 1.0 * kPi / 180.0;
 
@@ -257,6 +260,79 @@ BoundaryEdge line_part(const BoundaryEdge& of, Vec2 a, Vec2 b) {
 void rebuild_lines(std::vector<BoundaryEdge>& loop) {
   for (auto& edge : loop)
     if (curve_type(edge.curve) == CurveType::Line) edge = line_part(edge, edge.start, edge.end);
+}
+
+// Consecutive arcs of one circle, fitted piece by piece (a bolt head's or a
+// washer's circle written as two to four B-spline arcs, as several STEP
+// exporters write circles), come out with centres and radii a hair apart;
+// the medial axis of such a loop is then a little cycle round the centre,
+// not the centre itself. A run of consecutive circular edges whose centres
+// and radii agree within `close` is put on the one circle fitted through
+// all their samples (taken before recognition, from the file's own curves)
+// when every sample lies within that circle's arc tolerance: each edge keeps
+// its sense along the loop, its vertices move onto the circle at their
+// angles, and neighbours share those vertices exactly.
+void unify_circles(std::vector<BoundaryEdge>& loop, const std::vector<std::vector<Vec2>>& samples, double close,
+                   double size) {
+  const std::size_t n = loop.size();
+  const auto circle = [&](std::size_t i) { return std::get_if<CircleCurve>(&loop[i % n].curve); };
+  const auto same = [&](std::size_t i, std::size_t j) {
+    const CircleCurve *a = circle(i), *b = circle(j);
+    return a && b && distance(a->center, b->center) <= close && std::abs(a->radius - b->radius) <= close;
+  };
+  // A run starts where the edge before is not on its circle (or at 0 when all are).
+  std::size_t first = 0;
+  while (first < n && same(first + n - 1, first)) ++first;
+  const bool whole_loop = first == n;
+  if (whole_loop) first = 0;
+  for (std::size_t begin = first; begin < first + n;) {
+    std::size_t end = begin + 1;
+    while (end < begin + n && same(end - 1, end) && !(whole_loop && end == first + n)) ++end;
+    const std::size_t count = end - begin;
+    const std::size_t next_begin = end;
+    if (count < 2 || !circle(begin)) {
+      begin = next_begin;
+      continue;
+    }
+    std::vector<Vec2> points;
+    for (std::size_t k = begin; k < end; ++k) points.insert(points.end(), samples[k % n].begin(), samples[k % n].end());
+    Vec2 center;
+    double radius = 0.0;
+    const bool fitted = fit_circle(points, center, radius);
+    const double tolerance = std::min(kArcRadiusTolerance * radius, kArcSizeTolerance * size);
+    if (!fitted || std::any_of(points.begin(), points.end(),
+                               [&](Vec2 p) { return std::abs(distance(p, center) - radius) > tolerance; })) {
+      begin = next_begin;
+      continue;
+    }
+    const auto on_circle = [&](Vec2 p) {
+      const Vec2 u = (p - center) / std::max(distance(p, center), 1e-300);
+      return center + radius * u;
+    };
+    // The vertices at the run's ends and between its edges, moved onto the circle.
+    std::vector<Vec2> vertices{on_circle(loop[begin % n].start)};
+    for (std::size_t k = begin; k < end; ++k) vertices.push_back(on_circle(loop[k % n].end));
+    if (whole_loop) vertices.back() = vertices.front();
+    for (std::size_t k = begin; k < end; ++k) {
+      BoundaryEdge& edge = loop[k % n];
+      const CircleCurve& own = *circle(k);
+      const int sense = own.sense * (edge.t_end > edge.t_start ? 1 : -1);
+      const Vec2 a = vertices[k - begin] - center, b = vertices[k - begin + 1] - center;
+      double sweep = sense * signed_angle(a, b);
+      if (sweep <= 0.0) sweep += 2.0 * kPi;  // a whole circle's one edge, or an arc over half a turn
+      edge.curve = CircleCurve{center, radius, std::atan2(a.y, a.x), sense};
+      edge.t_start = 0.0;
+      edge.t_end = sweep;
+      edge.start = vertices[k - begin];
+      edge.end = vertices[k - begin + 1];
+    }
+    // The run's end vertices are also its neighbours'.
+    if (!whole_loop) {
+      loop[(begin + n - 1) % n].end = vertices.front();
+      loop[end % n].start = vertices.back();
+    }
+    begin = next_begin;
+  }
 }
 
 // Edge a followed by edge b as one edge, when both lie on one circle (or one
@@ -567,6 +643,12 @@ std::array<double, 3> to_3d(const Frame& f, Vec2 p) {
 // element can cross well: the two loops are joined round it.
 constexpr double kSliverWidth = 1e-6;
 
+std::string point_text(Vec2 p) {
+  std::ostringstream text;
+  text << "(" << p.x << ", " << p.y << ")";
+  return text.str();
+}
+
 // Where line edge `in` of one loop and line edge `other` of another run
 // along each other the opposite ways over more than `reach`: the stretch's
 // ends p, q in `in`'s direction. The material lies on neither side there
@@ -674,7 +756,12 @@ FaceModel build_face_model(RawFace raw) {
       }
     }
     snap_loop(edges, static_cast<int>(li), 2.0 * tolerance, name);
-    for (auto& edge : edges) recognise_simple_curve(edge, size);
+    std::vector<std::vector<Vec2>> samples;
+    for (auto& edge : edges) {
+      samples.push_back(dense_points(edge, 8));
+      recognise_simple_curve(edge, size);
+    }
+    unify_circles(edges, samples, kSameCircleTolerance * size, size);
     rebuild_lines(edges);
     join_pieces_of_one_curve(edges, kSameCurveTolerance * size, kShortPiece * size);
     face.loops.push_back(Loop{std::move(edges)});
@@ -709,6 +796,19 @@ FaceModel build_face_model(RawFace raw) {
     for (std::size_t i = 1; i + 1 < pts.size(); ++i) spread += std::abs(cross(pts[i] - pts[0], pts[i + 1] - pts[0]));
   }
   if (!(spread > 1e-12 * size * size)) throw InputError(name + ": face has no area");
+  // One loop running back along itself bounds no material between: a
+  // bridge of no width joining two parts of the face (SOT404.stp face 20,
+  // two legs joined along their tops), or a spike. No block mesh has
+  // elements there that are not flat.
+  const double sliver = std::max(tolerance, kSliverWidth * size);
+  for (const Loop& loop : face.loops)
+    for (std::size_t i = 0; i < loop.edges.size(); ++i)
+      for (std::size_t j = i + 1; j < loop.edges.size(); ++j) {
+        Vec2 p, q;
+        if (shared_stretch(loop.edges[i], loop.edges[j], sliver, 10.0 * sliver, p, q))
+          throw InputError(name + ": the outline runs back along itself from " + point_text(p) + " to " +
+                           point_text(q) + " (a part of no width joins two parts of the face; make them two faces)");
+      }
   // Boost.Geometry's predicates compare with fixed epsilons: judged on a face of
   // size 1 near the origin, a face of 1e-6 or 1e6 gets the same answer.
   const Vec2 origin = polylines.front().front();
