@@ -27,18 +27,20 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: medialmesh info FILE [--face N]... [--json]\n"
+    "usage: medialmesh info FILE [--face N]... [--solid S] [--json]\n"
     "       medialmesh svg FILE [--face N] -o OUT.svg\n"
     "       medialmesh medial FILE [--face N] [--json] [--svg OUT.svg]\n"
     "       medialmesh singularities FILE [--face N] [--merge F | --merge-size H] [--json] [--svg OUT.svg]\n"
     "       medialmesh decompose FILE [--face N] [--merge F | --merge-size H | --no-merge] [--json] [--svg OUT.svg]\n"
     "                            [--blocks OUT.brep|OUT.step]\n"
-    "       medialmesh mesh FILE [--face N]... [--size H] [--order 1|2] [--merge F | --merge-size H | --no-merge]\n"
+    "       medialmesh mesh FILE [--face N]... [--solid S] [--size H] [--order 1|2] [--merge F | --merge-size H | "
+    "--no-merge]\n"
     "                       [-o OUT.inp|OUT.msh|OUT.vtu] [--shell] [--no-smooth] [--json] [--svg OUT.svg]\n"
     "FILE is a .brep, .step/.stp or .iges/.igs file; N counts faces from 1 as FreeCAD's FaceN.\n"
     "--face (or --faces) takes a number or a comma-separated list, repeatable (info and mesh only).\n"
     "mesh with several faces meshes them together: where they share a piece of edge in 3-D (in one\n"
     "plane or not) both get the same nodes, and the files hold one mesh with those nodes once.\n"
+    "--solid S takes every planar face of solid S (counted from 1 as FreeCAD's Solids) at once.\n"
     "--merge [F] merges singularities closer than F times their medial radius (F in [0.25, 1],\n"
     "0.75 if left out); --merge-size H merges those closer than H (a target mesh size).\n"
     "decompose and mesh merge with F = 0.75 unless told otherwise.\n"
@@ -50,6 +52,7 @@ struct Options {
   std::string command;
   std::string file;
   std::vector<int> faces;
+  int solid = 0;  // 0: none given
   bool json = false;
   std::string output;
   std::string svg;
@@ -115,6 +118,12 @@ Options parse(int argc, char** argv) {
     };
     if (a == "--face" || a == "--faces") {
       for (int f : parse_face_list(value())) o.faces.push_back(f);
+    } else if (a == "--solid") {
+      const std::string& text = value();
+      const std::optional<double> number = parse_number(text);
+      if (!number || *number < 1 || *number != std::floor(*number) || *number > 1e9)
+        throw UsageError{"--solid needs a solid number (1, 2, ...), got '" + text + "'"};
+      o.solid = static_cast<int>(*number);
     } else if (a == "--json") {
       o.json = true;
     } else if (a == "-o" || a == "--output") {
@@ -164,6 +173,9 @@ Options parse(int argc, char** argv) {
   if (o.command == "svg" && o.output.empty()) throw UsageError{"svg needs -o OUT.svg"};
   if (o.command != "info" && o.command != "mesh" && o.faces.size() > 1)
     throw UsageError{o.command + " takes a single --face"};
+  if (o.solid > 0 && o.command != "info" && o.command != "mesh")
+    throw UsageError{"--solid belongs to the info and mesh commands"};
+  if (o.solid > 0 && !o.faces.empty()) throw UsageError{"give --face or --solid, not both"};
   // Meshing a face with itself would glue the copies along their whole outline.
   for (std::size_t i = 0; o.command == "mesh" && i < o.faces.size(); ++i) {
     if (std::count(o.faces.begin(), o.faces.begin() + i, o.faces[i]) > 0)
@@ -363,6 +375,10 @@ void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
   }
 }
 
+std::vector<mm::FaceModel> read_faces(const Options& o) {
+  return mm::read_face_models(o.file, o.solid > 0 ? mm::planar_faces_of_solid(o.file, o.solid) : o.faces);
+}
+
 // OCC's readers crash (null handles in a truncated BREP, a corrupted STEP)
 // or loop for ever on some malformed files, and a NaN in a file can crash its
 // projections. So a child process reads the file first, under a time limit;
@@ -374,7 +390,7 @@ std::vector<mm::FaceModel> read_faces_guarded(const Options& o) {
   if (child == 0) {
     alarm(o.read_time_limit);  // SIGALRM ends the child
     try {
-      mm::read_face_models(o.file, o.faces);
+      read_faces(o);
     } catch (...) {
     }
     _exit(0);
@@ -389,7 +405,7 @@ std::vector<mm::FaceModel> read_faces_guarded(const Options& o) {
     throw mm::InputError(o.file + ": cannot be read: the reader crashed on malformed data (signal " +
                          std::to_string(WTERMSIG(status)) + ")");
   }
-  return mm::read_face_models(o.file, o.faces);
+  return read_faces(o);
 }
 
 int run(const Options& o) {

@@ -320,6 +320,30 @@ std::vector<FaceModel> read_face_models(const std::string& path, const std::vect
   return models;
 }
 
+std::vector<int> planar_faces_of_solid(const std::string& path, int solid) {
+  const TopoDS_Shape shape = read_shape(path);
+  TopTools_IndexedMapOfShape faces, solids;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  TopExp::MapShapes(shape, TopAbs_SOLID, solids);
+  if (solid < 1 || solid > solids.Extent()) {
+    throw InputError(path + ": solid " + std::to_string(solid) + " is out of range (the file holds " +
+                     std::to_string(solids.Extent()) + " solids)");
+  }
+  std::vector<int> planar;
+  TopTools_IndexedMapOfShape own;
+  TopExp::MapShapes(solids(solid), TopAbs_FACE, own);
+  for (int i = 1; i <= own.Extent(); ++i) {
+    const TopoDS_Face& face = TopoDS::Face(own(i));
+    gp_Pln plane;
+    bool native = false;
+    std::string surface_name;
+    if (find_plane(face, plane, native, surface_name)) planar.push_back(faces.FindIndex(face));
+  }
+  if (planar.empty()) throw InputError(path + ": solid " + std::to_string(solid) + " has no planar face");
+  std::sort(planar.begin(), planar.end());
+  return planar;
+}
+
 TopoDS_Face face_from_brep_string(const std::string& brep, const std::string& name) {
   TopoDS_Shape shape;
   try {

@@ -14,6 +14,12 @@ namespace mm {
 // several is an InputError listing its planar faces. Throws InputError.
 std::vector<FaceModel> read_face_models(const std::string& path, const std::vector<int>& face_indices);
 
+// The planar faces of solid `solid` of a file (1-based, FreeCAD's Solids
+// order), by their face numbers in the file: every planar face of a part,
+// to mesh together. Throws InputError when the file holds fewer solids or
+// the solid no planar face.
+std::vector<int> planar_faces_of_solid(const std::string& path, int solid);
+
 // A single face given as BREP text (FreeCAD's Face.exportBrepToString()).
 FaceModel face_model_from_brep_string(const std::string& brep, const std::string& name);
 

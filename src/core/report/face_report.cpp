@@ -16,13 +16,10 @@ nlohmann::json face_report_json(const FaceModel& face) {
   for (const Corner& c : face.corners) {
     corners.push_back({{"x", c.position.x}, {"y", c.position.y}, {"angle_deg", c.angle * 180.0 / kPi}, {"nc", c.nc}});
   }
-  return {{"face", face.name},
-          {"area", face.area},
-          {"holes", face.holes()},
-          {"euler", face.euler()},
-          {"edges", edges},
-          {"corners", corners},
-          {"predicted_sum_k", predicted_sum_k(face)}};
+  return {{"face", face.name},     {"area", face.area},
+          {"diagonal", face.size}, {"holes", face.holes()},
+          {"euler", face.euler()}, {"edges", edges},
+          {"corners", corners},    {"predicted_sum_k", predicted_sum_k(face)}};
 }
 
 std::string face_report_table(const FaceModel& face) {
