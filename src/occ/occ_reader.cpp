@@ -1,10 +1,12 @@
 #include "occ/occ_reader.hpp"
 
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBndLib.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
 #include <Geom2dConvert.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_BezierCurve.hxx>
@@ -151,7 +153,22 @@ bool find_plane(const TopoDS_Face& face, gp_Pln& plane, bool& native, std::strin
     return true;
   }
   native = false;
-  GeomLib_IsPlanarSurface check(BRep_Tool::Surface(face), 1e-7);
+  // OCC's test misses planes by more than 1e-7 of their size (the 2 x 2
+  // poles of a converted plane of size 100, coplanar to 1e-14, fail 1e-7),
+  // and by more far from the origin (a face of 200 at 1.6e4 failed 1e-6):
+  // the bound is 1e-7 of the face's box, more far out, or the face's own
+  // tolerance.
+  Bnd_Box box;
+  BRepBndLib::Add(face, box);
+  double reach = 0.0, diagonal = 0.0;
+  if (!box.IsVoid()) {
+    double x0, y0, z0, x1, y1, z1;
+    box.Get(x0, y0, z0, x1, y1, z1);
+    for (const double c : {x0, y0, z0, x1, y1, z1}) reach = std::max(reach, std::abs(c));
+    diagonal = std::sqrt(box.SquareExtent());
+  }
+  const double tolerance = std::max({1e-7, BRep_Tool::Tolerance(face), 1e-7 * diagonal, 1e-10 * reach});
+  GeomLib_IsPlanarSurface check(BRep_Tool::Surface(face), tolerance);
   if (!check.IsPlanar()) return false;
   plane = check.Plan();
   return true;
