@@ -63,7 +63,7 @@ class FaceCommand(PlanarFaceCommand):
             made.append(self.make(doc, obj, subname))
         doc.commitTransaction()
         for obj in made:
-            if obj.Status == "ok":
+            if obj.Status.startswith("ok"):
                 FreeCAD.Console.PrintMessage(f"MedialMesh: {obj.Label}: {self.summary(obj)}\n")
         doc.recompute()
 
@@ -175,7 +175,7 @@ class CommandQuadMesh(PlanarFaceCommand):
             doc.abortTransaction()
             raise
         FreeCADGui.Selection.clearSelection()
-        if mesh.Status == "ok":
+        if mesh.Status.startswith("ok"):
             FreeCAD.Console.PrintMessage(f"MedialMesh: {mesh.Label}: {mesh.QuadCount} quads\n")
         opened = False
         try:

@@ -28,6 +28,7 @@ class FacePart:
     quality: dict  # the face's quality report
     notes: List[str]
     placement: FreeCAD.Placement  # the face's 2-D frame: maps its (x, y, 0) to 3-D
+    fallbacks: List[str]  # what made the face's mesh when the way asked for did not pass its checks
 
 
 @dataclass
@@ -46,7 +47,9 @@ class FaceMesh:
     (interior and boundary), seconds (the whole call, FemMesh included),
     mesher_seconds (the compiled mesher alone) and the rest of the mesher's
     report. placement: the first face's 2-D frame (for a sketch).
-    per_face: a FacePart per face.
+    per_face: a FacePart per face. fallbacks: the fallbacks any face's mesh
+    was made by ("less merging", "kinks as corners", ...), empty when every
+    face was meshed as asked.
     """
 
     femmesh: "Fem.FemMesh"
@@ -56,6 +59,7 @@ class FaceMesh:
     notes: List[str]
     placement: FreeCAD.Placement
     per_face: List[FacePart]
+    fallbacks: List[str]
 
 
 def build_femmesh(nodes, elements):
@@ -103,6 +107,7 @@ def _face_part(name, face, report, decomposition_report):
         quality=_quality(report),
         notes=notes,
         placement=result.placement,
+        fallbacks=list(report.get("fallbacks", [])),
     )
 
 
@@ -170,4 +175,5 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
         notes=notes,
         placement=per_face[0].placement,
         per_face=per_face,
+        fallbacks=list(result["report"].get("fallbacks", [])),
     )

@@ -313,7 +313,9 @@ class MedialQuadMesh(MedialObject):
         add("App::PropertyInteger", "IrregularNodes", "Results",
             "Nodes with other than 4 elements inside, or other than the corner's number on the boundary", read_only)
         add("App::PropertyFloat", "Seconds", "Results", "Time the mesh took, FemMesh included", read_only)
-        add("App::PropertyString", "Status", "Results", "'ok', or why the faces could not be meshed", read_only)
+        add("App::PropertyString", "Status", "Results",
+            "'ok', 'ok (fallback: ...)' when a fallback made the mesh, or why the faces could not be meshed",
+            read_only)
         add("App::PropertyStringList", "Notes", "Results", "What the mesher had to do, for the user", read_only)
 
     def clear_output(self, obj):
@@ -342,9 +344,19 @@ class MedialQuadMesh(MedialObject):
         obj.IrregularNodes = quality["irregular_nodes"]
         obj.Seconds = quality["seconds"]
         obj.Notes = result.notes
-        obj.Status = "ok"
+        obj.Status = ok_status(obj, result.fallbacks)
         if obj.Sketch:
             update_sketch(obj.Sketch, result.placement, result.splits)
+
+
+def ok_status(obj, fallbacks):
+    """'ok', or 'ok (fallback: ...)' with a warning in the report view: a
+    mesh a fallback made is returned, but the user should know it was."""
+    if not fallbacks:
+        return "ok"
+    names = ", ".join(fallbacks)
+    FreeCAD.Console.PrintWarning(f"MedialMesh: {obj.Label}: meshed by a fallback ({names}); see its Notes\n")
+    return f"ok (fallback: {names})"
 
 
 def mesh_arguments(size, order, merge, smooth):

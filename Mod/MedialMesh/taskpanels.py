@@ -62,6 +62,12 @@ def quality_text(quality, separator=", "):
         f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s"))
 
 
+def fallback_line(obj):
+    """The Status's fallback on a line of its own, or nothing."""
+    status = obj.Status
+    return "\n" + status[len("ok ("):-1] if status.startswith("ok (") else ""
+
+
 class QuadMeshTaskPanel:
     """Task dialog (shown with FreeCADGui.Control.showDialog) editing one
     MedialMesh quad mesh object."""
@@ -181,8 +187,8 @@ class QuadMeshTaskPanel:
 
     def show_object_results(self):
         obj = self.obj
-        if obj.Status == "ok":
-            self.show_message("Current mesh:\n" + quality_text(self.object_quality(), "\n"))
+        if obj.Status.startswith("ok"):
+            self.show_message("Current mesh:\n" + quality_text(self.object_quality(), "\n") + fallback_line(obj))
         else:
             self.show_message(f"Current mesh: {obj.Status or 'not computed'}", error=bool(obj.Status))
 
@@ -271,6 +277,8 @@ class QuadMeshTaskPanel:
         result = self.outcome["result"]
         self.show_preview(self.outcome["geometry"])
         text = "Preview:\n" + quality_text(result.quality, "\n")
+        if result.fallbacks:
+            text += "\nfallback: " + ", ".join(result.fallbacks)
         if result.notes:
             text += "\n" + "\n".join(result.notes)
         self.show_message(text)
@@ -352,7 +360,7 @@ class QuadMeshTaskPanel:
         finally:
             QtGui.QApplication.restoreOverrideCursor()
             doc.commitTransaction()
-        if obj.Status == "ok":  # a failure is in the report view already (see objects)
+        if obj.Status.startswith("ok"):  # a failure is in the report view already (see objects)
             FreeCAD.Console.PrintMessage(f"MedialMesh: {obj.Label}: {quality_text(self.object_quality())}\n")
 
     def object_quality(self):

@@ -234,7 +234,11 @@ void run_decompose(const Options& o, const mm::FaceModel& given) {
   const mm::FaceModel& face = decomposed.face;
   const mm::MedialAxis& axis = decomposed.axis;
   const mm::Decomposition& decomposition = decomposed.decomposition;
-  if (o.json) std::cout << mm::decomposition_report_json(face, decomposition).dump(2) << "\n";
+  if (o.json) {
+    nlohmann::json report = mm::decomposition_report_json(face, decomposition);
+    report["fallbacks"] = mm::fallback_list(decomposed.fallbacks);
+    std::cout << report.dump(2) << "\n";
+  }
   if (!o.svg.empty()) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);
     mm::draw_decomposition(canvas, face, axis, decomposition);
@@ -288,6 +292,14 @@ void print_measures(const mm::QualityReport& q) {
   std::cout << "\n";
 }
 
+// A result a fallback made says so: which, and the notes that say why.
+void print_fallbacks(const std::vector<mm::Fallback>& fallbacks, const std::vector<std::string>& notes) {
+  if (fallbacks.empty()) return;
+  std::cout << "  fallback: " << mm::fallback_names(fallbacks) << "\n";
+  for (const std::string& note : notes)
+    if (note.find("fallback") != std::string::npos) std::cout << "    " << note << "\n";
+}
+
 // Meshes the face; writes the mesh file, the report and the picture asked for.
 void run_mesh(const Options& o, const mm::FaceModel& face) {
   const mm::PipelineOptions options = mesh_options(o, face.size);
@@ -306,6 +318,7 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
     report["blocks"] = meshed.decomposition.blocks.size();
     report["singularities"] = meshed.decomposition.singularities.size();
     report["notes"] = meshed.blocks.notes;
+    report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
     std::cout << report.dump(2) << "\n";
   } else {
     const mm::QualityReport& q = meshed.quality;
@@ -314,6 +327,7 @@ void run_mesh(const Options& o, const mm::FaceModel& face) {
               << ", angles " << q.min_angle << " to " << q.max_angle << " degrees, " << q.irregular_interior.size()
               << " irregular interior nodes, " << q.seconds << " s\n";
     print_measures(q);
+    print_fallbacks(meshed.fallbacks, meshed.blocks.notes);
   }
   if (!o.svg.empty()) {
     mm::SvgCanvas canvas(mm::bounding_box(face), 800);
@@ -347,9 +361,11 @@ void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
       face["blocks"] = m.decomposition.blocks.size();
       face["singularities"] = m.decomposition.singularities.size();
       face["notes"] = m.blocks.notes;
+      face["fallbacks"] = mm::fallback_list(m.fallbacks);
       list.push_back(face);
     }
     report["faces"] = list;
+    report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
     std::cout << report.dump(2) << "\n";
   } else {
     const mm::QualityReport& q = meshed.quality;
@@ -359,10 +375,13 @@ void run_mesh_faces(const Options& o, const std::vector<mm::FaceModel>& faces) {
               << q.max_angle << " degrees, " << q.irregular_interior.size() << " irregular interior nodes, "
               << q.seconds << " s\n";
     print_measures(q);
+    if (!meshed.fallbacks.empty()) std::cout << "  fallback: " << mm::fallback_names(meshed.fallbacks) << "\n";
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      const mm::QualityReport& fq = meshed.faces[f].quality;
-      std::cout << "  " << faces[f].name << ": " << fq.quads << " quads, min scaled Jacobian " << fq.min_scaled_jacobian
-                << "\n";
+      const mm::MeshedFace& m = meshed.faces[f];
+      std::cout << "  " << faces[f].name << ": " << m.quality.quads << " quads, min scaled Jacobian "
+                << m.quality.min_scaled_jacobian;
+      if (!m.fallbacks.empty()) std::cout << " (fallback: " << mm::fallback_names(m.fallbacks) << ")";
+      std::cout << "\n";
     }
   }
   if (!o.svg.empty()) {

@@ -77,6 +77,7 @@ py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
   result["element_blocks"] = blocks;
   nlohmann::json report = mm::mesh_report_json(meshed.quality, mesh.order());
   report["notes"] = meshed.blocks.notes;
+  report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
   result["report"] = to_python(report);
   nlohmann::json decomposition = mm::decomposition_report_json(face, meshed.decomposition);
   decomposition["frame"] = mm::frame_json(face.frame);
@@ -110,12 +111,14 @@ py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::Mes
   result["element_blocks"] = blocks;
   nlohmann::json report = mm::merged_mesh_report_json(meshed.quality, mesh, mm::shared_edge_count(meshed.shared));
   report["notes"] = meshed.faces.front().blocks.notes;
+  report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
   result["report"] = to_python(report);
   py::list per_face;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const mm::MeshedFace& m = meshed.faces[i];
     nlohmann::json face_report = mm::mesh_report_json(m.quality, m.blocks.mesh.order());
     face_report["face"] = faces[i].name;
+    face_report["fallbacks"] = mm::fallback_list(m.fallbacks);
     nlohmann::json decomposition = mm::decomposition_report_json(faces[i], m.decomposition);
     decomposition["frame"] = mm::frame_json(faces[i].frame);
     py::dict entry;
@@ -202,12 +205,14 @@ PYBIND11_MODULE(_medialmesh, m) {
         const mm::DecomposedFace decomposed = mm::decompose_face(mm::face_model_from_brep_string(brep, name), options);
         nlohmann::json report = mm::decomposition_report_json(decomposed.face, decomposed.decomposition);
         report["frame"] = mm::frame_json(decomposed.face.frame);
+        report["fallbacks"] = mm::fallback_list(decomposed.fallbacks);
         return to_python(report);
       },
       py::arg("brep"), py::arg("name") = "face", py::arg("merge") = py::none(), py::arg("mesh_size") = py::none(),
       "Block decomposition of one planar face given as BREP text: {'blocks': [{'kind', 'sides', 'boundary', "
       "'area', 'singularity', 'corners', 'side_pieces'}], 'splits': [{'polyline', 'reason'}], 'fixed', "
-      "'singularities', 'fallback', 'notes', 'face_area', 'frame'} in the face's 2-D frame; merge (a factor "
+      "'singularities', 'fallback', 'fallbacks', 'notes', 'face_area', 'frame'} in the face's 2-D frame; merge (a "
+      "factor "
       "in 0.25 to 1) or mesh_size merge close singularities first, neither: no merging. Raises InputError "
       "for a face that cannot be read, SelfCheckError when the decomposition fails its own checks.");
 

@@ -74,12 +74,15 @@ TEST(Meshing, KinksTakenAsSmoothBecomeCornersWhereTheMedialAxisFails) {
       EXPECT_GT(m.quality.min_scaled_jacobian, 0.25) << face.name;  // 0.30, 0.32, 0.30 at order 1
       ASSERT_FALSE(m.blocks.notes.empty());
       EXPECT_EQ(m.blocks.notes.front(), medial.note);
+      ASSERT_FALSE(m.fallbacks.empty());
+      EXPECT_EQ(m.fallbacks.front(), Fallback::KinksAsCorners);
     }
   }
   // A face whose axis passes as it is keeps its corners and has no note.
   const FaceAxis plain =
       compute_face_medial_axis(test::face({test::polygon({{0, 0}, {2, 0}, {2, 1}, {1, 1.001}, {0, 1}})}));
   EXPECT_TRUE(plain.note.empty());
+  EXPECT_FALSE(plain.kinks_as_corners);
   EXPECT_EQ(plain.face.corners.size(), 4u);
 }
 
@@ -122,6 +125,7 @@ TEST(Meshing, SubmapCornersByTheCornerRuleWhereFollowingTheTurningFails) {
       m.blocks.notes.front().find("meshed with merging factor 0.75 and submapped corners by the corner rule alone"),
       std::string::npos)
       << m.blocks.notes.front();
+  EXPECT_EQ(m.fallbacks, std::vector<Fallback>{Fallback::SubmapCornerRule});
 }
 
 // A thin lens, an elliptic arc on its chord with tips of 14 to 40 degrees:

@@ -387,6 +387,24 @@ class TestMeshObject(unittest.TestCase):
         self.doc.recompute()
         self.check(mesh_obj, cylinder.Shape.getElement(top))
 
+    def test_a_mesh_made_by_a_fallback_says_so(self):
+        # A fuzz aerofoil whose merged block folds: remeshed with less merging.
+        data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "fuzz")
+        wing = self.doc.addObject("Part::Feature", "Wing")
+        wing.Shape = Part.read(os.path.join(data, "aerofoil_9_293.brep")).Faces[0]
+        self.doc.recompute()
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, wing, "Face1")
+        self.assertEqual(mesh_obj.Status, "ok (fallback: less merging)")
+        self.assertGreater(mesh_obj.QuadCount, 0)
+        self.assertTrue(any("as a fallback" in note for note in mesh_obj.Notes), mesh_obj.Notes)
+        self.assertFalse(any("failed" in note for note in mesh_obj.Notes), mesh_obj.Notes)
+        result = meshing.mesh_face(wing.Shape.Faces[0])
+        self.assertEqual(result.fallbacks, ["less merging"])
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("plate_with_hole")
+        self.doc.recompute()
+        self.assertEqual(MedialMesh.make_mesh_object(self.doc, plate, "Face1").Status, "ok")
+
     def test_bad_arguments_raise_before_creating_anything(self):
         plate = self.doc.addObject("Part::Feature", "Plate")
         plate.Shape = shared_face("square")

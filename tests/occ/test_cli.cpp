@@ -207,6 +207,26 @@ TEST(Cli, ZeroLengthEdge) {
   expect_bad_input("info " + path, path, "zero length");
 }
 
+// A mesh made by a fallback says which in the text a user reads and in the
+// JSON; one made as asked says nothing of it.
+TEST(Cli, MeshSaysWhichFallbackMadeIt) {
+  const std::string wing = std::string(MEDIALMESH_SOURCE_DIR) + "/tests/data/fuzz/aerofoil_9_293.brep";
+  const test::CliResult text = run_cli("mesh " + wing);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("\n  fallback: less merging\n"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("meshed with merging factor 0.25, as a fallback"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("failed"), std::string::npos) << text.out;
+  const test::CliResult json = run_cli("mesh " + wing + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["fallbacks"], nlohmann::json({"less merging"}));
+
+  const std::string plate = shared_dir() + "/geometry/plate_with_hole.brep";
+  const test::CliResult plain = run_cli("mesh " + plate);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("fallback"), std::string::npos) << plain.out;
+  EXPECT_TRUE(nlohmann::json::parse(run_cli("mesh " + plate + " --json").out)["fallbacks"].empty());
+}
+
 TEST(Cli, UsageErrors) {
   EXPECT_EQ(run_cli("").exit_code, 2);
   EXPECT_EQ(run_cli("frobnicate x.brep").exit_code, 2);

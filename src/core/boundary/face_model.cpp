@@ -823,8 +823,10 @@ FaceModel build_face_model(RawFace raw) {
 }
 
 std::string kinks_as_corners_note(const std::string& what, const std::string& failure, std::size_t kinks) {
-  return what + " failed its self-check (" + failure + ") with joins up to 0.5 degrees off tangent taken as " +
-         "smooth; built with " + std::to_string(kinks) + " such joins as corners";
+  return what + " built with " + std::to_string(kinks) +
+         " such joins as corners, as a fallback: with joins up to 0.5 degrees off tangent taken as smooth it did "
+         "not pass its check (" +
+         failure + ")";
 }
 
 FaceModel with_kinks_as_corners(const FaceModel& face) {

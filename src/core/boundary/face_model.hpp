@@ -23,7 +23,12 @@ class InputError : public std::runtime_error {
 class SelfCheckError : public std::runtime_error {
  public:
   SelfCheckError(const std::string& face, const std::string& check)
-      : std::runtime_error(face + ": self-check failed: " + check) {}
+      : std::runtime_error(face + ": self-check failed: " + check), check_(check) {}
+  // The check alone, without the face's name (for notes on a fallback).
+  const std::string& check() const { return check_; }
+
+ private:
+  std::string check_;
 };
 
 // One edge of a loop, traversed from t_start to t_end (t_end < t_start when

@@ -536,8 +536,11 @@ class Decomposer {
           Decomposition d = attempt(fix_all);
           if (fix_all) {
             d.fallback = true;
-            d.notes.push_back("the process's blocks failed a self-check (" + first +
-                              "); every singularity that can be fixed was fixed instead");
+            d.fixed_all = true;
+            d.notes.push_back(
+                "every singularity that can be fixed was fixed, as a fallback: the process's own "
+                "blocks did not pass their check (" +
+                first + ")");
           }
           return d;
         } catch (const SelfCheckFailure& failure) {
@@ -555,7 +558,11 @@ class Decomposer {
       try {
         Decomposition d = attempt(fix_all);
         d.fallback = d.fallback || fix_all;
-        d.notes.push_back("every attempt failed a self-check (" + first + ")");
+        d.fixed_all = fix_all;
+        d.lenient_typing = true;
+        d.notes.push_back(std::string("blocks whose flow does not close up typed by their angles") +
+                          (fix_all ? ", with every singularity that can be fixed fixed," : "") +
+                          " as a fallback: the process's own blocks did not pass their check (" + first + ")");
         return d;
       } catch (const SelfCheckFailure&) {
       }

@@ -109,6 +109,9 @@ struct Decomposition {
   std::vector<Block> blocks;
   std::vector<DecomposedSingularity> singularities;
   bool fallback = false;  // some singularity could not be given its polygon
+  // The process's own blocks did not pass their checks, and these are:
+  bool fixed_all = false;       // with every singularity that can be fixed fixed
+  bool lenient_typing = false;  // with blocks that do not close up typed by their angles
   // Holes with reflex corners that one submapped block runs round, every
   // corner of the hole on its outline (loop indices): the block's lattice
   // wraps the hole and converges on its corners.

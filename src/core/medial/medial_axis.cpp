@@ -1501,7 +1501,7 @@ FaceAxis compute_face_medial_axis(const FaceModel& face) {
     if (kinks == 0) throw;
     try {
       MedialAxis axis = compute_medial_axis(kinked);
-      return {std::move(kinked), std::move(axis), kinks_as_corners_note("the medial axis", first.what(), kinks)};
+      return {std::move(kinked), std::move(axis), kinks_as_corners_note("the medial axis", first.check(), kinks), true};
     } catch (const SelfCheckError&) {
       throw first;
     }

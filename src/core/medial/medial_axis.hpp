@@ -78,7 +78,8 @@ MedialAxis compute_medial_axis(const FaceModel& face, double fineness = 1.0);
 struct FaceAxis {
   FaceModel face;
   MedialAxis axis;
-  std::string note;  // empty, or what was done and why
+  std::string note;               // empty, or what was done and why
+  bool kinks_as_corners = false;  // built with the face's kinks as corners (a fallback)
 };
 FaceAxis compute_face_medial_axis(const FaceModel& face);
 

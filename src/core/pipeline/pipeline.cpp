@@ -101,6 +101,37 @@ std::string settings_text(const PipelineOptions& options) {
   return text.str();
 }
 
+// The fallbacks that `used` took against the settings `asked` for.
+std::vector<Fallback> option_fallbacks(const PipelineOptions& asked, const PipelineOptions& used) {
+  std::vector<Fallback> list;
+  if (asked.orthogonal_joins && !used.orthogonal_joins) list.push_back(Fallback::NoOrthogonalJoins);
+  if (asked.submap_corners_follow_turning && !used.submap_corners_follow_turning)
+    list.push_back(Fallback::SubmapCornerRule);
+  const bool by_size = used.tolerance.mesh_size > 0.0;
+  if (asked.merge && (!used.merge || (by_size && used.tolerance.mesh_size < asked.tolerance.mesh_size) ||
+                      (!by_size && used.tolerance.radius_factor < asked.tolerance.radius_factor)))
+    list.push_back(Fallback::LessMerging);
+  if (!asked.split_concave_corners && used.split_concave_corners) list.push_back(Fallback::ConcaveCornerSplits);
+  if (!asked.meshing.wide_untangling && used.meshing.wide_untangling) list.push_back(Fallback::WideUntangling);
+  if (!asked.meshing.regrid_wide_folds && used.meshing.regrid_wide_folds) list.push_back(Fallback::WinslowGrid);
+  if (!asked.whole_face && used.whole_face) list.push_back(Fallback::WholeFace);
+  if (used.merge && by_size && (!asked.merge || used.tolerance.mesh_size > asked.tolerance.mesh_size))
+    list.push_back(Fallback::CoarseRetry);
+  if (!asked.frame_wrapped_holes && used.frame_wrapped_holes) list.push_back(Fallback::FramedHoles);
+  return list;
+}
+
+// The fallbacks behind one face's result: its axis and flow's, its
+// decomposition's, then the pipeline's.
+std::vector<Fallback> face_fallbacks(const FaceFlow& flow, const Decomposition& decomposition,
+                                     const PipelineOptions& asked, const PipelineOptions& used) {
+  std::vector<Fallback> list = flow.fallbacks;
+  if (decomposition.fixed_all) list.push_back(Fallback::FixedAll);
+  if (decomposition.lenient_typing) list.push_back(Fallback::LenientTyping);
+  for (const Fallback f : option_fallbacks(asked, used)) list.push_back(f);
+  return list;
+}
+
 // face_flow, its stages timed into `stages` (a fallback's second axis
 // with the singularities).
 FaceFlow flow_of_face(const FaceModel& face, StageSeconds& stages) {
@@ -178,8 +209,8 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
       start = Clock::now();
       try {
         attempt(fallback);
-        return "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
-               "); meshed with " + settings_text(fallback);
+        return "meshed with " + settings_text(fallback) + ", as a fallback: with " + settings_text(options) +
+               " the result did not pass its check (" + first.check() + ")";
       } catch (const SelfCheckError&) {
       }
     }
@@ -193,8 +224,8 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
       } catch (const SelfCheckError&) {
         return false;
       }
-      note = "with " + settings_text(options) + " a stage failed its self-check (" + first.what() +
-             "), and with each fallback; meshed with " + meshed_with;
+      note = "meshed with " + meshed_with + ", as a last fallback: with " + settings_text(options) +
+             " and with each other fallback the result did not pass its check (" + first.check() + ")";
       return true;
     };
     PipelineOptions wide = options;
@@ -284,7 +315,7 @@ void remesh_if_coarse(const PipelineOptions& options, const std::vector<const Fa
 constexpr double kPoorMesh = 0.5;
 
 template <typename Meshed, typename Make, typename Worst, typename Wrapped, typename BlockSeconds>
-void remesh_if_poor(const PipelineOptions& used, Meshed& meshed, StageSeconds& passed, std::string& note,
+void remesh_if_poor(PipelineOptions& used, Meshed& meshed, StageSeconds& passed, std::string& note,
                     StageSeconds& stages, Make make, Worst worst, Wrapped wrapped, BlockSeconds block_seconds) {
   if (used.frame_wrapped_holes || used.split_concave_corners || !wrapped(meshed)) return;
   const double before = worst(meshed);
@@ -300,6 +331,7 @@ void remesh_if_poor(const PipelineOptions& used, Meshed& meshed, StageSeconds& p
       add_stage(stages, "failed_attempts", total_seconds(passed) + block_seconds(meshed));
       meshed = std::move(again);
       passed = attempt;
+      used = framed;
       std::ostringstream text;
       if (!note.empty()) text << note << "; ";
       text << "the worst element's shape was " << before
@@ -323,7 +355,9 @@ double worst_shape(const QuadMesh& mesh) {
 FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
   try {
     MeshFlow flow = compute_mesh_flow(medial.face, medial.axis);
-    return {std::move(medial.face), std::move(medial.axis), std::move(flow), std::move(medial.note)};
+    std::vector<Fallback> used;
+    if (medial.kinks_as_corners) used.push_back(Fallback::KinksAsCorners);
+    return {std::move(medial.face), std::move(medial.axis), std::move(flow), std::move(medial.note), used};
   } catch (const SelfCheckError& first) {
     // A join taken as smooth may still bend enough for a disc tangent on
     // one side to reach over the other: the axis then ends short of it (the
@@ -336,8 +370,11 @@ FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
       try {
         MedialAxis axis = compute_medial_axis(kinked);
         MeshFlow flow = compute_mesh_flow(kinked, axis);
-        return {std::move(kinked), std::move(axis), std::move(flow),
-                kinks_as_corners_note("the mesh flow", first.what(), kinks)};
+        return {std::move(kinked),
+                std::move(axis),
+                std::move(flow),
+                kinks_as_corners_note("the mesh flow", first.check(), kinks),
+                {Fallback::KinksAsCorners}};
       } catch (const SelfCheckError&) {
       }
     }
@@ -353,10 +390,12 @@ FaceFlow flow_of_axis(const FaceModel& face, FaceAxis medial) {
       MeshFlow flow = compute_mesh_flow(medial.face, axis);
       std::ostringstream note;
       if (!medial.note.empty()) note << medial.note << "; ";
-      note << "the mesh flow failed its self-check (" << first.what()
-           << ") on the medial axis from the default chords; built again from chords " << kChordRefinement
-           << " times finer";
-      return {std::move(medial.face), std::move(axis), std::move(flow), note.str()};
+      note << "the medial axis built again from chords " << kChordRefinement
+           << " times finer, as a fallback: on the axis from the default chords the mesh flow did not pass its check ("
+           << first.check() << ")";
+      std::vector<Fallback> used{Fallback::FinerChords};
+      if (medial.kinks_as_corners) used.insert(used.begin(), Fallback::KinksAsCorners);
+      return {std::move(medial.face), std::move(axis), std::move(flow), note.str(), used};
     } catch (const SelfCheckError&) {
       throw first;
     }
@@ -371,7 +410,41 @@ DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions&
   FaceFlow f = face_flow(face);
   Decomposition decomposition = decompose(f.face, f.axis, f.flow, options);
   if (!f.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), f.note);
-  return {std::move(f.face), std::move(f.axis), std::move(decomposition)};
+  std::vector<Fallback> fallbacks = f.fallbacks;
+  if (decomposition.fixed_all) fallbacks.push_back(Fallback::FixedAll);
+  if (decomposition.lenient_typing) fallbacks.push_back(Fallback::LenientTyping);
+  return {std::move(f.face), std::move(f.axis), std::move(decomposition), fallbacks};
+}
+
+const char* fallback_name(Fallback fallback) {
+  switch (fallback) {
+    case Fallback::KinksAsCorners: return "kinks as corners";
+    case Fallback::FinerChords: return "finer chords";
+    case Fallback::FixedAll: return "every singularity fixed";
+    case Fallback::LenientTyping: return "blocks typed by their angles";
+    case Fallback::NoOrthogonalJoins: return "no orthogonal joins";
+    case Fallback::SubmapCornerRule: return "submapped corners by the corner rule";
+    case Fallback::LessMerging: return "less merging";
+    case Fallback::ConcaveCornerSplits: return "splits at every concave corner";
+    case Fallback::WideUntangling: return "untangling reaching further";
+    case Fallback::WinslowGrid: return "Winslow's grid";
+    case Fallback::WholeFace: return "the whole face as one block";
+    case Fallback::CoarseRetry: return "merging as at the default size";
+    case Fallback::FramedHoles: return "holes framed";
+  }
+  return "?";
+}
+
+std::string fallback_names(const std::vector<Fallback>& fallbacks) {
+  std::string names;
+  for (const Fallback f : fallbacks) names += (names.empty() ? "" : ", ") + std::string(fallback_name(f));
+  return names;
+}
+
+std::vector<std::string> fallback_list(const std::vector<Fallback>& fallbacks) {
+  std::vector<std::string> names;
+  for (const Fallback f : fallbacks) names.emplace_back(fallback_name(f));
+  return names;
 }
 
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
@@ -401,6 +474,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   remesh_if_poor(
       used, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_shape(m.second.mesh); },
       [](const Meshed& m) { return !m.first.wrapped_holes.empty(); }, block_seconds);
+  result.fallbacks = face_fallbacks(flow, meshed.first, options, used);
   result.decomposition = std::move(meshed.first);
   result.blocks = std::move(meshed.second);
   if (!flow.note.empty()) result.blocks.notes.push_back(flow.note);
@@ -477,6 +551,10 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   std::vector<QualityReport> reports;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     MeshedFace face;
+    face.fallbacks = face_fallbacks(flows[f], decompositions[f], options, used);
+    for (const Fallback fallback : face.fallbacks)
+      if (std::find(result.fallbacks.begin(), result.fallbacks.end(), fallback) == result.fallbacks.end())
+        result.fallbacks.push_back(fallback);
     face.decomposition = std::move(decompositions[f]);
     face.blocks = std::move(blocks.faces[f]);
     face.quality = measure_quality(face.blocks.mesh, used.meshing.size);

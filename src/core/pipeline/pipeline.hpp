@@ -21,10 +21,37 @@ struct PipelineOptions {
   bool frame_wrapped_holes = false;           // DecompositionOptions::frame_wrapped_holes
 };
 
+// What made a result when the way asked for did not pass its checks (or,
+// for the last two, gave a far too coarse or a poor mesh): each a fallback
+// a stage or the pipeline took, in the order taken. A result carries the
+// list, and says so wherever a user looks (CLI text, JSON, FreeCAD Status).
+enum class Fallback {
+  KinksAsCorners,       // the axis or flow with joins up to 0.5 degrees off tangent as corners
+  FinerChords,          // the axis built again from chords 4 times finer
+  FixedAll,             // the decomposition with every singularity that can be fixed fixed
+  LenientTyping,        // the decomposition's blocks that do not close up typed by their angles
+  NoOrthogonalJoins,    // splits not joined at right angles
+  SubmapCornerRule,     // submapped blocks' corners by the corner rule alone
+  LessMerging,          // singularities merged less (or not at all) than asked
+  ConcaveCornerSplits,  // splits along the arms of every concave corner
+  WideUntangling,       // untangling reaching further
+  WinslowGrid,          // widely folded submapped blocks placed by Winslow's grid
+  WholeFace,            // the whole face as one polygon block, no medial axis
+  CoarseRetry,          // a mesh far coarser than asked made again, merging as at the default size
+  FramedHoles,          // a poor mesh made again with holes a block ran round framed
+};
+// A few words for users ("less merging", "kinks as corners", ...).
+const char* fallback_name(Fallback fallback);
+// The names joined by ", ": the text after "fallback: " in the CLI and Status.
+std::string fallback_names(const std::vector<Fallback>& fallbacks);
+// The names one by one, for the JSON reports' "fallbacks".
+std::vector<std::string> fallback_list(const std::vector<Fallback>& fallbacks);
+
 struct MeshedFace {
   Decomposition decomposition;
   BlockMesh blocks;
-  QualityReport quality;  // with the seconds of every stage
+  QualityReport quality;            // with the seconds of every stage
+  std::vector<Fallback> fallbacks;  // empty: made as asked
 };
 
 // Throws InputError for bad options, SelfCheckError when a stage's result
@@ -55,7 +82,8 @@ struct FaceFlow {
   FaceModel face;
   MedialAxis axis;
   MeshFlow flow;
-  std::string note;  // empty, or what was done and why
+  std::string note;                 // empty, or what was done and why
+  std::vector<Fallback> fallbacks;  // KinksAsCorners, FinerChords, or none
 };
 FaceFlow face_flow(const FaceModel& face);
 // The same from the face's axis as compute_face_medial_axis(face) gave it.
@@ -68,6 +96,7 @@ struct DecomposedFace {
   FaceModel face;
   MedialAxis axis;
   Decomposition decomposition;
+  std::vector<Fallback> fallbacks;  // the axis's, the flow's and the decomposition's
 };
 DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions& options);
 
@@ -79,6 +108,7 @@ struct MeshedFaces {
   std::vector<SharedPiece> shared;  // the pieces shared, with their nodes in both faces
   MergedMesh mesh;                  // all faces in 3-D, shared nodes once
   QualityReport quality;            // of the merged mesh (combine_quality), with the stages' seconds
+  std::vector<Fallback> fallbacks;  // every face's, each once
 };
 
 // Throws as mesh_face, and falls back as it does (the coarse retry merging
