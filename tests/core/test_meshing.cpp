@@ -173,7 +173,9 @@ TEST(Meshing, EllipseEndsKeepElementsNearTheTargetSizeWhenFine) {
 // splits by it cut each tip off a few hundredths from its point: a sliver
 // block whose element had the angle between two chords that short
 // (occt_crankarm_30 meshed at 0.02 that way). The tips stay a fair part of
-// the way to the singularity.
+// the way to the singularity. (The arcs' intervals now keep within their
+// sagitta, and the tip blocks follow them: 0.19 at 0.05 of the diagonal,
+// 0.26 before.)
 TEST(Meshing, CuspTipsAreNotCutIntoSlivers) {
   const FaceModel face = test::face({{test::line({-1, 0}, {1, 0}), test::arc({1, 0}, {0, 1}, std::sqrt(0.5) - 1.0),
                                       test::arc({0, 1}, {-1, 0}, std::sqrt(0.5) - 1.0)}},
@@ -184,7 +186,7 @@ TEST(Meshing, CuspTipsAreNotCutIntoSlivers) {
     options.meshing.size = size * face.size;
     const MeshedFace m = mesh_face(face, options);
     EXPECT_TRUE(test::mesh_validity_problems(face, m.blocks.mesh).empty()) << size;
-    EXPECT_GT(m.quality.min_scaled_jacobian, 0.25) << size;
+    EXPECT_GT(m.quality.min_scaled_jacobian, 0.15) << size;
   }
 }
 

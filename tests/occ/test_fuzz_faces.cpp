@@ -350,7 +350,9 @@ TEST(FuzzFaces, AMeshFarCoarserThanAskedIsMadeAgainWithTheDefaultSizesMerging) {
   EXPECT_FALSE(m->blocks.coarser_than_asked);
   EXPECT_EQ(test::element_count_problem(face, m->blocks.mesh, size), "");
   EXPECT_TRUE(std::any_of(m->blocks.notes.begin(), m->blocks.notes.end(), [](const std::string& note) {
-    return note.find("far coarser than asked; meshed with merging within") != std::string::npos;
+    return note.find("meshed with merging within") != std::string::npos &&
+           note.find("as a fallback: with merging factor 0.75 the mesh was far coarser than asked") !=
+               std::string::npos;
   }));
   PipelineOptions options;  // several faces meshed together retry the same way
   options.meshing.size = size;

@@ -90,6 +90,14 @@ struct Stretch {
   bool along(std::size_t j) const { return forward[j]; }
 };
 
+// Samples a boundary piece is measured by for its intervals' sagitta, and
+// the share of the allowed sagitta interval assignment aims within (the
+// rest is for smoothing, which slides boundary nodes along the curve).
+constexpr int kSagittaSamples = 256;
+constexpr double kSagittaMargin = 0.8;
+// Points along each boundary side the mesh check measures its sagitta at.
+constexpr int kSagittaCheckPoints = 8;
+
 // A boundary piece sampled finely in its parameter: cumulative chord length
 // and the turning of its tangent, for lengths, bounds and even spacing.
 struct PieceSamples {
@@ -98,6 +106,40 @@ struct PieceSamples {
   std::vector<double> arc;  // cumulative chord length
   double turning = 0.0;
 };
+
+PieceSamples sample_piece(const BoundaryEdge& edge, double t_from, double t_to, int steps);
+
+// The farthest any sample between samples i and j lies from their chord.
+double sagitta_between(const PieceSamples& s, std::size_t i, std::size_t j) {
+  double most = 0.0;
+  for (std::size_t k = i + 1; k < j; ++k)
+    most = std::max(most, distance_to_segment(s.points[k], s.points[i], s.points[j]));
+  return most;
+}
+
+// The fewest intervals, at least `least`, of equal length along the piece
+// whose chords all stay within `most` of it (a long curved side with the
+// intervals its opposite side has cut across the curve: a cambered slat's
+// concave side in one interval left the face by a quarter of its area).
+// Measured on the samples, so no more than the samples can tell apart.
+int intervals_within_sagitta(const PieceSamples& s, double most, int least) {
+  const std::size_t last = s.points.size() - 1;
+  if (!(most > 0.0) || last < 2) return least;
+  for (int n = std::max(1, least); n < static_cast<int>(last); ++n) {
+    bool within = true;
+    std::size_t from = 0;
+    for (int k = 1; k <= n && within; ++k) {
+      const double target = s.arc.back() * k / n;
+      std::size_t to =
+          k == n ? last : std::size_t(std::lower_bound(s.arc.begin(), s.arc.end(), target) - s.arc.begin());
+      to = std::clamp(to, from + 1, last);
+      within = sagitta_between(s, from, to) <= most;
+      from = to;
+    }
+    if (within) return n;
+  }
+  return std::max(least, static_cast<int>(last));
+}
 
 PieceSamples sample_piece(const BoundaryEdge& edge, double t_from, double t_to, int steps) {
   PieceSamples s;
@@ -329,6 +371,7 @@ class BlockMesher {
       // intervals span too much of a small hole.
       SmoothingOptions smoothing;
       smoothing.max_boundary_turn = kMaxTurnPerInterval;
+      smoothing.max_boundary_sagitta = kSagittaMargin * options_.max_sagitta * options_.size;
       if (options_.wide_untangling) smoothing.untangle_rings = kWideUntangleRings;
       // A piece of boundary shared with another face keeps the nodes both have.
       // Nor do the loop's vertices move: their two intervals lie on two edges
@@ -705,9 +748,11 @@ class BlockMesher {
       s.edge = piece.edge;
       s.t_from = params[i];
       s.t_to = params[i + 1];
-      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, 64);
+      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, kSagittaSamples);
       s.length = samples.arc.back();
       s.min_count = std::max(1, static_cast<int>(std::ceil(samples.turning / kMaxTurnPerInterval - 1e-6)));
+      s.min_count =
+          intervals_within_sagitta(samples, kSagittaMargin * options_.max_sagitta * options_.size, s.min_count);
       ids.push_back(static_cast<int>(segments_.size()));
       segments_.push_back(std::move(s));
     }
@@ -1209,6 +1254,8 @@ class BlockMesher {
     // the other edge's curve end included). The elements must cover the
     // face less that: the polygon of the boundary nodes, once.
     double cut_off = 0.0;
+    double worst_sagitta = 0.0;
+    Vec2 worst_side;
     for (const Segment& s : segments_) {
       if (s.split >= 0) continue;
       for (std::size_t k = 0; k + 1 < s.nodes.size(); ++k) {
@@ -1216,10 +1263,24 @@ class BlockMesher {
         const Vec2 b = mesh_.nodes[s.nodes[k + 1]];
         const double ta = current_param(s, static_cast<int>(k)), tb = current_param(s, static_cast<int>(k + 1));
         const Vec2 curve_b = edge_point(edge_of(s), tb).p;
+        // Between the nodes where they lie on the curve now (a split's end slides along it).
+        const double ca = param_on_curve(s, static_cast<int>(k)), cb = param_on_curve(s, static_cast<int>(k + 1));
+        for (int i = 1; i < kSagittaCheckPoints; ++i) {
+          const double off =
+              distance_to_segment(edge_point(edge_of(s), ca + (cb - ca) * i / kSagittaCheckPoints).p, a, b);
+          if (off > worst_sagitta) worst_sagitta = off, worst_side = 0.5 * (a + b);
+        }
         // The closed path a -> curve -> b -> a seen from a (the chord and the
         // step from a onto the curve sweep nothing from there).
         cut_off += edge_area_integral(edge_of(s), ta, tb, a) + 0.5 * cross(curve_b - a, b - curve_b);
       }
+    }
+    if (worst_sagitta > options_.max_sagitta * options_.size) {
+      std::ostringstream s;
+      s << "the boundary side at " << at(worst_side) << " lies " << worst_sagitta << " off its curve, "
+        << worst_sagitta / options_.size << " of the size (at most " << options_.max_sagitta
+        << "): the mesh leaves the face or misses part of it there";
+      fail(s.str());
     }
     double area = 0.0;
     int worst = -1;

@@ -26,6 +26,12 @@ struct MeshingOptions {
   // pipeline's very last resort, as smoothing untangles most such folds
   // into better meshes.
   bool regrid_wide_folds = false;
+  // How far a boundary side's chord may lie off its curve, as a fraction of
+  // the size: the mesh check fails a mesh whose sides stray further (it
+  // would leave the face or miss part of it there), and every boundary
+  // piece gets the intervals that keep its sides within half of this
+  // (smoothing then slides boundary nodes along their curves, unevenly).
+  double max_sagitta = 0.2;
 };
 
 struct BlockMesh {

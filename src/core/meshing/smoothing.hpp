@@ -16,6 +16,10 @@ struct SmoothingOptions {
   // intervals turns by at most this (radians) along its curve, or by no more
   // than it did: the curves stay resolved as interval assignment resolved them.
   double max_boundary_turn = 0.0;
+  // When > 0, a boundary node slides only as far as each of its two
+  // intervals' chords stays within this distance of the curve, or no
+  // further off than it was: the mesh keeps to the face.
+  double max_boundary_sagitta = 0.0;
   std::vector<int> fixed;  // nodes that never move, besides the face corners
   // How far untangling reaches round folded elements, in rings of elements,
   // before it relaxes the region once (see untangle in smoothing.cpp).

@@ -262,9 +262,10 @@ std::optional<PipelineOptions> coarse_retry_options(const PipelineOptions& optio
   return merged;
 }
 
-std::string coarse_retry_note(const PipelineOptions& options, const PipelineOptions& retry) {
-  return "with " + settings_text(options) + " the mesh was far coarser than asked; meshed with " +
-         settings_text(retry) + " (as at the default size, a twentieth of the diagonal)";
+std::string coarse_retry_note(const PipelineOptions& options, const PipelineOptions& retry, const std::string& why) {
+  return "meshed with " + settings_text(retry) +
+         " (as at the default size, a twentieth of the diagonal), as a fallback: with " + settings_text(options) + " " +
+         why;
 }
 
 double total_seconds(const StageSeconds& stages) {
@@ -273,26 +274,39 @@ double total_seconds(const StageSeconds& stages) {
   return total;
 }
 
-// The coarse retry: when `meshed` is far coarser than asked, `make` meshes
-// again with coarse_retry_options, and that result replaces it (its
-// decomposition time in `passed`, the note, its settings in `used`) if it no
-// longer is. The time of whichever attempt is dropped goes to failed_attempts.
-template <typename Meshed, typename Make, typename IsCoarse, typename BlockSeconds>
+// The coarse retry: when `meshed` is far coarser than asked, or its worst
+// element's shape is under kVeryPoorMesh, `make` meshes again with
+// coarse_retry_options, and that result replaces it (its decomposition time
+// in `passed`, the note, its settings in `used`) if it is not coarse and
+// either the first was or its worst element is no longer that poor. The thin lens of
+// fuzz elliptic_28_944 at 0.01 of its diagonal, its curved sides given the
+// intervals their sagitta needs, came out just over the coarse bar (212
+// elements where area / H^2 is 520) with needles (shape 0.014) along its
+// body; merged as at the default size, 501 elements, 0.198. The time of
+// whichever attempt is dropped goes to failed_attempts.
+constexpr double kVeryPoorMesh = 0.1;
+
+template <typename Meshed, typename Make, typename IsCoarse, typename Worst, typename BlockSeconds>
 void remesh_if_coarse(const PipelineOptions& options, const std::vector<const FaceFlow*>& flows, Meshed& meshed,
                       PipelineOptions& used, StageSeconds& passed, std::string& note, StageSeconds& stages, Make make,
-                      IsCoarse coarse, BlockSeconds block_seconds) {
-  const std::optional<PipelineOptions> retry = coarse(meshed) ? coarse_retry_options(options, flows) : std::nullopt;
+                      IsCoarse coarse, Worst worst, BlockSeconds block_seconds) {
+  const bool was_coarse = coarse(meshed);
+  const double before = worst(meshed);
+  const std::optional<PipelineOptions> retry =
+      was_coarse || before < kVeryPoorMesh ? coarse_retry_options(options, flows) : std::nullopt;
   if (!retry) return;
   const auto t = Clock::now();
   try {
     StageSeconds attempt;
     Meshed again = make(*retry, attempt);
-    if (!coarse(again)) {
+    if (!coarse(again) && (was_coarse || worst(again) >= kVeryPoorMesh)) {
       add_stage(stages, "failed_attempts", total_seconds(passed) + block_seconds(meshed));
       meshed = std::move(again);
       used = *retry;
       passed = attempt;
-      note = coarse_retry_note(options, *retry);
+      note = coarse_retry_note(options, *retry,
+                               was_coarse ? std::string("the mesh was far coarser than asked")
+                                          : "its worst element's shape was " + std::to_string(before));
       return;
     }
   } catch (const SelfCheckError&) {
@@ -334,10 +348,9 @@ void remesh_if_poor(PipelineOptions& used, Meshed& meshed, StageSeconds& passed,
       used = framed;
       std::ostringstream text;
       if (!note.empty()) text << note << "; ";
-      text << "the worst element's shape was " << before
-           << " with a hole one submapped block runs round; meshed again with such holes framed by splits along "
-              "their corners' arms: "
-           << after;
+      text << "meshed again with the holes one submapped block ran round framed by splits along their corners' "
+              "arms, as a fallback: the worst element's shape was "
+           << before << ", now " << after;
       note = text.str();
       return;
     }
@@ -468,12 +481,13 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
     used = o;
   });
   const auto block_seconds = [](const Meshed& m) { return total_seconds(m.second.stage_seconds); };
+  const auto worst = [](const Meshed& m) { return worst_shape(m.second.mesh); };
   remesh_if_coarse(
       options, {&flow}, meshed, used, passed, note, stages, make,
-      [](const Meshed& m) { return m.second.coarser_than_asked; }, block_seconds);
+      [](const Meshed& m) { return m.second.coarser_than_asked; }, worst, block_seconds);
   remesh_if_poor(
-      used, meshed, passed, note, stages, make, [](const Meshed& m) { return worst_shape(m.second.mesh); },
-      [](const Meshed& m) { return !m.first.wrapped_holes.empty(); }, block_seconds);
+      used, meshed, passed, note, stages, make, worst, [](const Meshed& m) { return !m.first.wrapped_holes.empty(); },
+      block_seconds);
   result.fallbacks = face_fallbacks(flow, meshed.first, options, used);
   result.decomposition = std::move(meshed.first);
   result.blocks = std::move(meshed.second);
@@ -521,20 +535,20 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     for (const BlockMesh& f : m.second.faces) seconds += total_seconds(f.stage_seconds);
     return seconds;
   };
+  const auto worst_of_faces = [](const Meshed& m) {
+    double worst = 1.0;
+    for (const BlockMesh& f : m.second.faces) worst = std::min(worst, worst_shape(f.mesh));
+    return worst;
+  };
   remesh_if_coarse(
       options, flow_list, meshed, used, passed, note, stages, make,
       [](const Meshed& m) {
         return std::any_of(m.second.faces.begin(), m.second.faces.end(),
                            [](const BlockMesh& f) { return f.coarser_than_asked; });
       },
-      block_seconds);
+      worst_of_faces, block_seconds);
   remesh_if_poor(
-      used, meshed, passed, note, stages, make,
-      [](const Meshed& m) {
-        double worst = 1.0;
-        for (const BlockMesh& f : m.second.faces) worst = std::min(worst, worst_shape(f.mesh));
-        return worst;
-      },
+      used, meshed, passed, note, stages, make, worst_of_faces,
       [](const Meshed& m) {
         return std::any_of(m.first.begin(), m.first.end(),
                            [](const Decomposition& d) { return !d.wrapped_holes.empty(); });
