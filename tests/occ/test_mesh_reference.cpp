@@ -143,6 +143,22 @@ TEST(MeshReference, BoundarySidesKeepToTheirCurves) {
   }
 }
 
+// A ring of OCCT's Motor-c.brep (face 43) whose split ends a hair off the
+// outer circle's seam: the split end and the seam vertex are one node, its
+// place at the period's other end from the segment's own parameter. The
+// sagitta check read that as a side round the whole circle (19.95 off its
+// curve); it takes the segment's parameter there now.
+TEST(MeshReference, ARingSplitAtItsCirclesSeamKeepsToItsCurves) {
+  const FaceModel ring = test::data_face("motor_c_face_43_ring");
+  for (const int order : {1, 2}) {
+    MeshedFace m;
+    ASSERT_NO_THROW(m = meshed(ring, 0.05, order)) << order;
+    EXPECT_TRUE(test::mesh_validity_problems(ring, m.blocks.mesh).empty()) << order;
+    EXPECT_TRUE(m.quality.irregular_interior.empty()) << order;
+    EXPECT_GT(m.quality.min_shape(), 0.9) << order;
+  }
+}
+
 TEST(MeshReference, CircleHasExactlyFourValenceThreeNodes) {
   const MeshedFace m = meshed(test::reference_face("circle"));
   EXPECT_EQ(irregular_valences(m.quality), (std::vector<int>{3, 3, 3, 3}));

@@ -1076,14 +1076,14 @@ class Decomposer {
       if (place->corner >= 0) continue;
       const Loop& loop = face_.loops[place->loop];
       const BoundaryEdge& e = loop.edges[place->edge];
-      for (const bool at_end : {false, true}) {
-        const int vertex = at_end ? (place->edge + 1) % static_cast<int>(loop.edges.size()) : place->edge;
-        const Vec2 join = at_end ? e.end : e.start;
-        if (index_.is_corner(place->loop, vertex) || distance(place->point, join) > kSnapToJoin * face_.size) continue;
-        *place = index_.place(place->loop, place->edge, at_end ? e.t_end : e.t_start);
-        place->point = join;
-        break;
-      }
+      // The end nearer in parameter: a closed curve's two ends are one point
+      // (a circle's seam), and the place must stay on its own side of it.
+      const bool at_end = std::abs(place->t - e.t_end) < std::abs(place->t - e.t_start);
+      const int vertex = at_end ? (place->edge + 1) % static_cast<int>(loop.edges.size()) : place->edge;
+      const Vec2 join = at_end ? e.end : e.start;
+      if (index_.is_corner(place->loop, vertex) || distance(place->point, join) > kSnapToJoin * face_.size) continue;
+      *place = index_.place(place->loop, place->edge, at_end ? e.t_end : e.t_start);
+      place->point = join;
     }
   }
 

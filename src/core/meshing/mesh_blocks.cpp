@@ -748,11 +748,14 @@ class BlockMesher {
       s.edge = piece.edge;
       s.t_from = params[i];
       s.t_to = params[i + 1];
-      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, kSagittaSamples);
+      // A line's chords lie on it: only curves are sampled finely for the sagitta.
+      const bool straight = std::holds_alternative<LineCurve>(edge_of(s).curve);
+      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, straight ? 64 : kSagittaSamples);
       s.length = samples.arc.back();
       s.min_count = std::max(1, static_cast<int>(std::ceil(samples.turning / kMaxTurnPerInterval - 1e-6)));
-      s.min_count =
-          intervals_within_sagitta(samples, kSagittaMargin * options_.max_sagitta * options_.size, s.min_count);
+      if (!straight)
+        s.min_count =
+            intervals_within_sagitta(samples, kSagittaMargin * options_.max_sagitta * options_.size, s.min_count);
       ids.push_back(static_cast<int>(segments_.size()));
       segments_.push_back(std::move(s));
     }
@@ -977,10 +980,18 @@ class BlockMesher {
   // the mid-side nodes: smoothing slides a split's end along the edge too,
   // but not the nodes on the loop's vertices (whose place may name the
   // other edge, or the other end of a closed curve's period).
+  // A split end on a closed curve's seam, a hair off its vertex, may share
+  // its node with the vertex and take the place at the period's other end
+  // (Motor-c.brep face 43: the segment's 6.28319, the place's 0): on a
+  // closed edge a place further from the segment's own parameter than half
+  // the edge's range is that.
   double param_on_curve(const Segment& s, int k) const {
     const NodePlace& place = mesh_.places[s.nodes[k]];
-    if (place.loop == s.loop && place.edge == s.edge && !on_loop_vertex(s, k)) return place.t;
-    return s.params[k];
+    if (place.loop != s.loop || place.edge != s.edge || on_loop_vertex(s, k)) return s.params[k];
+    const BoundaryEdge& edge = edge_of(s);
+    const bool across_the_seam = distance(edge.start, edge.end) <= tolerance_ &&
+                                 std::abs(place.t - s.params[k]) > 0.5 * std::abs(edge.t_end - edge.t_start);
+    return across_the_seam ? s.params[k] : place.t;
   }
 
   // Each node's quads in compressed lists, so that the quads on a side are

@@ -63,12 +63,14 @@ struct MeshedFace {
 // blocks placed by Winslow's grid too (MeshingOptions::regrid_wide_folds),
 // last with the whole face as one polygon block (DecompositionOptions::
 // whole_face). A mesh far coarser than asked
-// (BlockMesh::coarser_than_asked) is made again with the singularities merged
-// within a twentieth of the face's diagonal, as at the default size, and
-// kept if it no longer is. A mesh whose worst element is under 0.5 with a
-// hole one submapped block runs round (Decomposition::wrapped_holes) is made
-// again with such holes framed, and the better kept. A note in blocks.notes
-// says when a fallback or a retry was used.
+// (BlockMesh::coarser_than_asked), or whose worst element's shape is under
+// 0.1, is made again with the singularities merged within a twentieth of
+// the face's diagonal, as at the default size, and kept if it is not coarse
+// and (for the poor one) lifts its worst element over 0.1. A mesh whose
+// worst element is under 0.5 with a hole one submapped block runs round
+// (Decomposition::wrapped_holes) is made again with such holes framed, and
+// the better kept. MeshedFace::fallbacks lists what was used, and a note in
+// blocks.notes says why.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // The face as the medial axis took it, its axis and its mesh flow, as
