@@ -60,6 +60,7 @@ def mesh_at(cli, path, face, size):
                       min_shape=report["measures"]["shape"]["min"], mean_shape=report["measures"]["shape"]["mean"],
                       needles=report["counts"]["edge_ratio_above_10"], poor=report["counts"]["shape_below_0.3"],
                       irregular=report["irregular_interior"], notes=report.get("notes", []),
+                      fallbacks=report.get("fallbacks", []),
                       size=report["size"])
     else:
         result["error"] = run.stderr.strip()
@@ -123,9 +124,13 @@ def sweep_solids(args):
           f"{len(whole)} meshed whole ({sum(len(r['faces']) for r in whole)} faces), {len(stopped)} stopped "
           f"({sum(not r.get('failing_alone') for r in stopped)} of them with every face meshing alone)")
     for r in stopped:
-        alone = f"faces failing alone: {r['failing_alone']}" if r.get("failing_alone") else "every face meshes alone"
-        print(f"stopped: {os.path.basename(r['file'])} solid {r['solid']} ({len(r['faces'])} planar faces, "
-              f"{alone}): {r['error'].splitlines()[0][:300]}")
+        if r["failing_alone"] == ["unreadable"]:
+            alone = "a face cannot be read"
+        elif r.get("failing_alone"):
+            alone = f"{len(r['faces'])} planar faces, failing alone: {r['failing_alone']}"
+        else:
+            alone = f"{len(r['faces'])} planar faces, each meshing alone"
+        print(f"stopped: {os.path.basename(r['file'])} solid {r['solid']} ({alone}): {r['error'].splitlines()[0][:300]}")
     for r in sorted(whole, key=lambda r: r["min_shape"])[:10]:
         print(f"worst: {os.path.basename(r['file'])} solid {r['solid']} ({len(r['faces'])} faces, "
               f"{r['quads']} quads): shape {r['min_shape']:.3f}")
@@ -155,7 +160,7 @@ def main():
                     json.dump(results, out, indent=0)
     meshed = [r for r in results if r["exit"] == 0]
     failed = [r for r in results if r["exit"] != 0]
-    fallback = [r for r in meshed if any("meshed with" in n for n in r["notes"])]
+    fallback = [r for r in meshed if r["fallbacks"]]
     print(f"{len(results)} planar faces in {len(args.files)} files: {len(meshed)} meshed "
           f"({len(fallback)} by a fallback), {len(failed)} stopped")
     for bound in (0.1, 0.2, 0.3):
@@ -171,7 +176,7 @@ def main():
         print(f"worst: {os.path.basename(r['file'])} face {r['face']}: shape {r['min_shape']:.3f}, "
               f"scaled Jacobian {r['min_scaled_jacobian']:.3f}")
     for r in fallback:
-        print(f"fallback: {os.path.basename(r['file'])} face {r['face']}: {r['notes'][0][-120:]}")
+        print(f"fallback: {os.path.basename(r['file'])} face {r['face']}: {', '.join(r['fallbacks'])}")
     return 0 if not failed else 1
 
 
