@@ -107,7 +107,23 @@ struct PieceSamples {
   double turning = 0.0;
 };
 
-PieceSamples sample_piece(const BoundaryEdge& edge, double t_from, double t_to, int steps);
+PieceSamples sample_piece(const BoundaryEdge& edge, double t_from, double t_to, int steps) {
+  PieceSamples s;
+  s.params.resize(steps + 1);
+  s.points.resize(steps + 1);
+  s.arc.assign(steps + 1, 0.0);
+  for (int i = 0; i <= steps; ++i) {
+    s.params[i] = t_from + (t_to - t_from) * i / steps;
+    s.points[i] = edge_point(edge, s.params[i]).p;
+    if (i > 0) s.arc[i] = s.arc[i - 1] + distance(s.points[i], s.points[i - 1]);
+  }
+  for (int i = 1; i < steps; ++i) {
+    const Vec2 a = s.points[i] - s.points[i - 1];
+    const Vec2 b = s.points[i + 1] - s.points[i];
+    if (norm(a) > 0.0 && norm(b) > 0.0) s.turning += std::abs(signed_angle(a, b));
+  }
+  return s;
+}
 
 // The farthest any sample between samples i and j lies from their chord.
 double sagitta_between(const PieceSamples& s, std::size_t i, std::size_t j) {
@@ -139,24 +155,6 @@ int intervals_within_sagitta(const PieceSamples& s, double most, int least) {
     if (within) return n;
   }
   return std::max(least, static_cast<int>(last));
-}
-
-PieceSamples sample_piece(const BoundaryEdge& edge, double t_from, double t_to, int steps) {
-  PieceSamples s;
-  s.params.resize(steps + 1);
-  s.points.resize(steps + 1);
-  s.arc.assign(steps + 1, 0.0);
-  for (int i = 0; i <= steps; ++i) {
-    s.params[i] = t_from + (t_to - t_from) * i / steps;
-    s.points[i] = edge_point(edge, s.params[i]).p;
-    if (i > 0) s.arc[i] = s.arc[i - 1] + distance(s.points[i], s.points[i - 1]);
-  }
-  for (int i = 1; i < steps; ++i) {
-    const Vec2 a = s.points[i] - s.points[i - 1];
-    const Vec2 b = s.points[i + 1] - s.points[i];
-    if (norm(a) > 0.0 && norm(b) > 0.0) s.turning += std::abs(signed_angle(a, b));
-  }
-  return s;
 }
 
 // Parameter at a fraction of the piece's length, from the sampled table.
@@ -470,17 +468,14 @@ class BlockMesher {
 
   // The points a stretch's nodes take when this face places them, in the
   // stretch's direction: each segment's ends and its counts[i] - 1 inner
-  // nodes by arc length (as place_segment_nodes puts them).
+  // nodes by arc length (even_params, as place_segment_nodes puts them).
   std::vector<Vec2> stretch_points(const Stretch& st, const std::vector<int>& counts) const {
     std::vector<Vec2> points;
     for (std::size_t j = 0; j < st.segments.size(); ++j) {
       const Segment& s = segments_[st.segments[j]];
-      const int n = counts[st.segments[j]];
-      const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, std::max(64, 16 * n));
-      std::vector<Vec2> own{samples.points.front()};
-      for (int k = 1; k < n; ++k)
-        own.push_back(edge_point(edge_of(s), param_at_length(samples, samples.arc.back() * k / n)).p);
-      own.push_back(samples.points.back());
+      std::vector<Vec2> own{edge_point(edge_of(s), s.t_from).p};
+      for (const double t : even_params(s, counts[st.segments[j]])) own.push_back(edge_point(edge_of(s), t).p);
+      own.push_back(edge_point(edge_of(s), s.t_to).p);
       if (!st.along(j)) std::reverse(own.begin(), own.end());
       points.insert(points.end(), own.begin() + (points.empty() ? 0 : 1), own.end());
     }
@@ -906,6 +901,15 @@ class BlockMesher {
     }
   }
 
+  // The parameters of a boundary segment's n - 1 inner nodes at equal arc
+  // length along it.
+  std::vector<double> even_params(const Segment& s, int n) const {
+    const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, std::max(64, 16 * n));
+    std::vector<double> params;
+    for (int k = 1; k < n; ++k) params.push_back(param_at_length(samples, samples.arc.back() * k / n));
+    return params;
+  }
+
   void place_segment_nodes(const std::vector<int>& counts) {
     for (std::size_t i = 0; i < segments_.size(); ++i) {
       Segment& s = segments_[i];
@@ -916,11 +920,11 @@ class BlockMesher {
         const std::vector<double> arc = cumulative_length(line);
         for (int k = 1; k < n; ++k) add_node(s, point_along_polyline(line, arc, arc.back() * k / n), NodePlace{});
       } else {
-        const PieceSamples samples = sample_piece(edge_of(s), s.t_from, s.t_to, std::max(64, 16 * n));
+        const std::vector<double> even = s.targets.empty() ? even_params(s, n) : std::vector<double>{};
         s.params.assign(1, s.t_from);
         for (int k = 1; k < n; ++k) {
-          const double t = s.targets.empty() ? param_at_length(samples, samples.arc.back() * k / n)
-                                             : closest_param(edge_of(s), s.t_from, s.t_to, s.targets[k - 1]).first;
+          const double t =
+              s.targets.empty() ? even[k - 1] : closest_param(edge_of(s), s.t_from, s.t_to, s.targets[k - 1]).first;
           NodePlace place;
           place.loop = s.loop;
           place.edge = s.edge;
