@@ -189,6 +189,15 @@ BoundaryEdge rational_quarter(double r, double a) {
   return BoundaryEdge{c, 0.0, 1.0, 0, {}, {}};
 }
 
+// A side's sagitta: none on a line, r (1 - cos(a / 2)) on an arc of angle a
+// (exact on a circle, and within the sampling on the same arc as a spline).
+TEST(FaceModel, EdgeSagitta) {
+  EXPECT_EQ(edge_sagitta(line({0, 0}, {3, 4}), 0.0, 5.0), 0.0);
+  const BoundaryEdge arc{CircleCurve{{1, 2}, 2.0, 0.3, 1}, 0.0, 2.0, 0, {}, {}};
+  EXPECT_NEAR(edge_sagitta(arc, 0.5, 1.5), 2.0 * (1.0 - std::cos(0.5)), 1e-15);
+  EXPECT_NEAR(edge_sagitta(rational_quarter(1.5, 0.0), 0.0, 1.0), 1.5 * (1.0 - std::cos(kPi / 4)), 1e-3);
+}
+
 TEST(FaceModel, RecognisesArcsStoredAsBSplines) {
   std::vector<BoundaryEdge> circle;
   for (int i = 0; i < 4; ++i) circle.push_back(rational_quarter(1.5, i * kPi / 2));

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "boundary/validate.hpp"
+#include "geometry/polygon.hpp"
 
 namespace mm {
 namespace {
@@ -479,6 +480,18 @@ Vec2 edge_tangent(const BoundaryEdge& edge, double t) {
   const bool at_start = std::abs(t - edge.t_start) < std::abs(t - edge.t_end);
   const Vec2 other = evaluate_point(edge, at_start ? t + step : t - step);
   return normalized(at_start ? other - cp.p : cp.p - other);
+}
+
+double edge_sagitta(const BoundaryEdge& edge, double from, double to) {
+  if (std::holds_alternative<LineCurve>(edge.curve)) return 0.0;
+  if (const auto* circle = std::get_if<CircleCurve>(&edge.curve))
+    return circle->radius * (1.0 - std::cos(std::min(std::abs(to - from), 2.0 * kPi) / 2.0));
+  constexpr int kSteps = 8;
+  const Vec2 a = edge_point(edge, from).p, b = edge_point(edge, to).p;
+  double most = 0.0;
+  for (int k = 1; k < kSteps; ++k)
+    most = std::max(most, distance_to_segment(edge_point(edge, from + (to - from) * k / kSteps).p, a, b));
+  return most;
 }
 
 double edge_length(const BoundaryEdge& edge) {

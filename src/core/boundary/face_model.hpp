@@ -113,6 +113,10 @@ Vec2 edge_tangent(const BoundaryEdge& edge, double t);
 // golden section between its neighbours.
 std::pair<double, double> closest_param(const BoundaryEdge& edge, double ta, double tb, Vec2 p);
 double edge_length(const BoundaryEdge& edge);
+// How far the edge strays from its chord between parameters from and to:
+// 0 on a line, exact on a circle, elsewhere the farthest of the 7 points
+// at eighths of the range (a boundary side's sagitta).
+double edge_sagitta(const BoundaryEdge& edge, double from, double to);
 
 // Points along the edge, start and end included, with chordal deviation at
 // most chord_tolerance and no more than 15 degrees of turning between points.

@@ -95,8 +95,6 @@ struct Stretch {
 // rest is for smoothing, which slides boundary nodes along the curve).
 constexpr int kSagittaSamples = 256;
 constexpr double kSagittaMargin = 0.8;
-// Points along each boundary side the mesh check measures its sagitta at.
-constexpr int kSagittaCheckPoints = 8;
 
 // A boundary piece sampled finely in its parameter: cumulative chord length
 // and the turning of its tangent, for lengths, bounds and even spacing.
@@ -1279,12 +1277,9 @@ class BlockMesher {
         const double ta = current_param(s, static_cast<int>(k)), tb = current_param(s, static_cast<int>(k + 1));
         const Vec2 curve_b = edge_point(edge_of(s), tb).p;
         // Between the nodes where they lie on the curve now (a split's end slides along it).
-        const double ca = param_on_curve(s, static_cast<int>(k)), cb = param_on_curve(s, static_cast<int>(k + 1));
-        for (int i = 1; i < kSagittaCheckPoints; ++i) {
-          const double off =
-              distance_to_segment(edge_point(edge_of(s), ca + (cb - ca) * i / kSagittaCheckPoints).p, a, b);
-          if (off > worst_sagitta) worst_sagitta = off, worst_side = 0.5 * (a + b);
-        }
+        const double off = edge_sagitta(edge_of(s), param_on_curve(s, static_cast<int>(k)),
+                                        param_on_curve(s, static_cast<int>(k + 1)));
+        if (off > worst_sagitta) worst_sagitta = off, worst_side = 0.5 * (a + b);
         // The closed path a -> curve -> b -> a seen from a (the chord and the
         // step from a onto the curve sweep nothing from there).
         cut_off += edge_area_integral(edge_of(s), ta, tb, a) + 0.5 * cross(curve_b - a, b - curve_b);

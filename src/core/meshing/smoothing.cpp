@@ -9,8 +9,6 @@
 #include <string>
 #include <variant>
 
-#include "geometry/polygon.hpp"
-
 namespace mm {
 namespace {
 
@@ -400,19 +398,6 @@ class Smoother {
     return total;
   }
 
-  // How far the edge strays from its chord between two parameters (sampled).
-  double sagitta(const BoundaryEdge& edge, double from, double to) const {
-    if (std::holds_alternative<LineCurve>(edge.curve)) return 0.0;
-    if (const auto* circle = std::get_if<CircleCurve>(&edge.curve))
-      return circle->radius * (1.0 - std::cos(std::min(std::abs(to - from), 2.0 * kPi) / 2.0));
-    constexpr int kSteps = 8;
-    const Vec2 a = edge_point(edge, from).p, b = edge_point(edge, to).p;
-    double most = 0.0;
-    for (int k = 1; k < kSteps; ++k)
-      most = std::max(most, distance_to_segment(edge_point(edge, from + (to - from) * k / kSteps).p, a, b));
-    return most;
-  }
-
   // Where boundary node n may go: with a turning bound, its two intervals
   // (to the slide interval's ends) turn by no more than the bound or than
   // they do now, and with a sagitta bound stray from their chords no
@@ -435,8 +420,8 @@ class Smoother {
     bound.behind_sagitta = bound.ahead_sagitta = std::numeric_limits<double>::infinity();
     const double now = mesh_.places[n].t;
     if (options_.max_boundary_sagitta > 0.0) {
-      bound.behind_sagitta = std::max(options_.max_boundary_sagitta, sagitta(*bound.edge, behind, now));
-      bound.ahead_sagitta = std::max(options_.max_boundary_sagitta, sagitta(*bound.edge, now, ahead));
+      bound.behind_sagitta = std::max(options_.max_boundary_sagitta, edge_sagitta(*bound.edge, behind, now));
+      bound.ahead_sagitta = std::max(options_.max_boundary_sagitta, edge_sagitta(*bound.edge, now, ahead));
     }
     if (!(options_.max_boundary_turn > 0.0)) return bound;  // the shortest-chord bound alone
     bound.behind_limit = std::max(options_.max_boundary_turn, turning(*bound.edge, behind, now));
@@ -456,8 +441,8 @@ class Smoother {
            distance(p, mesh_.nodes[ahead_[n]]) >= kShortestChord * first_chord_ahead_[n] &&
            (std::isinf(bound.behind_limit) || turning(*bound.edge, bound.behind, t) <= bound.behind_limit) &&
            (std::isinf(bound.ahead_limit) || turning(*bound.edge, t, bound.ahead) <= bound.ahead_limit) &&
-           (std::isinf(bound.behind_sagitta) || sagitta(*bound.edge, bound.behind, t) <= bound.behind_sagitta) &&
-           (std::isinf(bound.ahead_sagitta) || sagitta(*bound.edge, t, bound.ahead) <= bound.ahead_sagitta);
+           (std::isinf(bound.behind_sagitta) || edge_sagitta(*bound.edge, bound.behind, t) <= bound.behind_sagitta) &&
+           (std::isinf(bound.ahead_sagitta) || edge_sagitta(*bound.edge, t, bound.ahead) <= bound.ahead_sagitta);
   }
 
   double clamp_to_interval(double t, double behind, double ahead) const {

@@ -121,13 +121,19 @@ std::vector<Fallback> option_fallbacks(const PipelineOptions& asked, const Pipel
   return list;
 }
 
-// The fallbacks behind one face's result: its axis and flow's, its
-// decomposition's, then the pipeline's.
-std::vector<Fallback> face_fallbacks(const FaceFlow& flow, const Decomposition& decomposition,
-                                     const PipelineOptions& asked, const PipelineOptions& used) {
+// The fallbacks the stages took for one face: its axis and flow's, then
+// its decomposition's.
+std::vector<Fallback> stage_fallbacks(const FaceFlow& flow, const Decomposition& decomposition) {
   std::vector<Fallback> list = flow.fallbacks;
   if (decomposition.fixed_all) list.push_back(Fallback::FixedAll);
   if (decomposition.lenient_typing) list.push_back(Fallback::LenientTyping);
+  return list;
+}
+
+// The fallbacks behind one face's mesh: the stages', then the pipeline's.
+std::vector<Fallback> face_fallbacks(const FaceFlow& flow, const Decomposition& decomposition,
+                                     const PipelineOptions& asked, const PipelineOptions& used) {
+  std::vector<Fallback> list = stage_fallbacks(flow, decomposition);
   for (const Fallback f : option_fallbacks(asked, used)) list.push_back(f);
   return list;
 }
@@ -423,9 +429,7 @@ DecomposedFace decompose_face(const FaceModel& face, const DecompositionOptions&
   FaceFlow f = face_flow(face);
   Decomposition decomposition = decompose(f.face, f.axis, f.flow, options);
   if (!f.note.empty()) decomposition.notes.insert(decomposition.notes.begin(), f.note);
-  std::vector<Fallback> fallbacks = f.fallbacks;
-  if (decomposition.fixed_all) fallbacks.push_back(Fallback::FixedAll);
-  if (decomposition.lenient_typing) fallbacks.push_back(Fallback::LenientTyping);
+  std::vector<Fallback> fallbacks = stage_fallbacks(f, decomposition);
   return {std::move(f.face), std::move(f.axis), std::move(decomposition), fallbacks};
 }
 
