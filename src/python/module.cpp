@@ -7,6 +7,7 @@
 
 #include "occ/occ_reader.hpp"
 #include "pipeline/pipeline.hpp"
+#include "quality/quad_measures.hpp"
 #include "report/decomposition_report.hpp"
 #include "report/face_report.hpp"
 #include "report/medial_report.hpp"
@@ -50,6 +51,22 @@ py::array_t<int> element_array(const std::vector<std::array<int, 4>>& quads,
   return elements;
 }
 
+// Each quad's Verdict shape (quad_measures.hpp), in the order of `meshes`'
+// quads one mesh after the other: what a view colours the elements by.
+py::array_t<double> element_shapes(const std::vector<const mm::QuadMesh*>& meshes) {
+  py::ssize_t count = 0;
+  for (const mm::QuadMesh* mesh : meshes) count += static_cast<py::ssize_t>(mesh->quads.size());
+  py::array_t<double> shapes(count);
+  auto s = shapes.mutable_unchecked<1>();
+  py::ssize_t i = 0;
+  for (const mm::QuadMesh* mesh : meshes)
+    for (const auto& quad : mesh->quads)
+      s(i++) =
+          mm::measure_quad({mesh->nodes[quad[0]], mesh->nodes[quad[1]], mesh->nodes[quad[2]], mesh->nodes[quad[3]]})
+              .shape;
+  return shapes;
+}
+
 // The mesh as numpy arrays: nodes in 3-D (the face's frame) and in the face's
 // plane, elements as 0-based node indices (4 corners, then 4 mid-side nodes).
 py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
@@ -75,6 +92,7 @@ py::dict mesh_dict(const mm::FaceModel& face, const mm::MeshedFace& meshed) {
   result["nodes_2d"] = plane;
   result["elements"] = elements;
   result["element_blocks"] = blocks;
+  result["element_shape"] = element_shapes({&mesh});
   nlohmann::json report = mm::mesh_report_json(meshed.quality, mesh.order());
   report["notes"] = meshed.blocks.notes;
   report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
@@ -109,6 +127,9 @@ py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::Mes
   result["elements"] = elements;
   result["element_faces"] = element_faces;
   result["element_blocks"] = blocks;
+  std::vector<const mm::QuadMesh*> face_meshes;  // merged face by face, in this order
+  for (const mm::MeshedFace& face : meshed.faces) face_meshes.push_back(&face.blocks.mesh);
+  result["element_shape"] = element_shapes(face_meshes);
   nlohmann::json report = mm::merged_mesh_report_json(meshed.quality, mesh, mm::shared_edge_count(meshed.shared));
   report["notes"] = meshed.faces.front().blocks.notes;
   report["fallbacks"] = mm::fallback_list(meshed.fallbacks);
@@ -132,8 +153,9 @@ py::dict merged_mesh_dict(const std::vector<mm::FaceModel>& faces, const mm::Mes
 
 // mesh and mesh_faces: merge factor or distance given, merging; neither, none.
 mm::PipelineOptions pipeline_options(double size, int order, std::optional<double> merge,
-                                     std::optional<double> merge_size, bool smooth) {
+                                     std::optional<double> merge_size, bool smooth, mm::Progress* progress) {
   mm::PipelineOptions options;
+  options.meshing.progress = progress;
   options.meshing.size = size;
   options.meshing.order = order;
   options.meshing.smooth = smooth;
@@ -148,6 +170,29 @@ PYBIND11_MODULE(_medialmesh, m) {
   m.doc() = "MedialMesh core: boundary model, medial axis and singularities of planar faces";
   py::register_exception<mm::InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<mm::SelfCheckError>(m, "SelfCheckError", PyExc_RuntimeError);
+  static py::exception<mm::Cancelled> cancelled(m, "Cancelled", PyExc_Exception);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const mm::Cancelled&) {
+      cancelled("meshing cancelled");
+    }
+  });
+
+  py::class_<mm::Progress>(m, "Progress",
+                           "How far a mesh() or mesh_faces() call has got, read from another thread while it "
+                           "runs, and cancel() to stop it: the call then raises Cancelled.")
+      .def(py::init<>())
+      .def_property_readonly(
+          "stage", [](const mm::Progress& p) { return p.state().stage; },
+          "The stage running: 'medial axis', 'decomposition', 'interval counts', 'blocks', 'smoothing', "
+          "'checks', 'joining faces', 'quality'; '' before the first")
+      .def_property_readonly(
+          "done", [](const mm::Progress& p) { return p.state().done; }, "Steps of the stage done (faces, blocks)")
+      .def_property_readonly(
+          "total", [](const mm::Progress& p) { return p.state().total; }, "Steps the stage has; 0: not counted")
+      .def("cancel", &mm::Progress::cancel, "Ask the running call to stop at its next step")
+      .def_property_readonly("cancelled", &mm::Progress::cancelled);
 
   m.def(
       "face_model",
@@ -219,9 +264,9 @@ PYBIND11_MODULE(_medialmesh, m) {
   m.def(
       "mesh",
       [](const std::string& brep, double size, int order, std::optional<double> merge, std::optional<double> merge_size,
-         bool smooth, const std::string& name) {
+         bool smooth, const std::string& name, mm::Progress* progress) {
         const mm::FaceModel face = mm::face_model_from_brep_string(brep, name);
-        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth);
+        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth, progress);
         mm::MeshedFace meshed;
         {
           py::gil_scoped_release release;  // the FreeCAD GUI keeps drawing while we mesh
@@ -231,17 +276,21 @@ PYBIND11_MODULE(_medialmesh, m) {
       },
       py::arg("brep"), py::arg("size"), py::arg("order") = 1, py::arg("merge") = 0.75,
       py::arg("merge_size") = py::none(), py::arg("smooth") = true, py::arg("name") = "face",
+      py::arg("progress") = py::none(),
       "All-quad mesh of one planar face given as BREP text, with target element size `size` and element "
       "order 1 (4-node) or 2 (8-node): {'nodes': (N, 3) array in 3-D, 'nodes_2d': (N, 2) in the face's "
       "frame, 'elements': (M, 4 or 8) 0-based node indices (corners counter-clockwise, then mid-side "
-      "nodes), 'element_blocks': (M,), 'report': quality report, 'decomposition': the blocks}. merge is "
-      "the merge factor (None: no merging), merge_size a merge distance. Raises InputError for bad input, "
-      "SelfCheckError when a stage fails its own checks.");
+      "nodes), 'element_blocks': (M,), 'element_shape': (M,) Verdict shape, 'report': quality report, 'decomposition': "
+      "the blocks}. merge is "
+      "the merge factor (None: no merging), merge_size a merge distance. progress: a Progress told the stages "
+      "as they run (the GIL is let go meanwhile). Raises InputError for bad input, SelfCheckError when a stage "
+      "fails its own checks, Cancelled when progress.cancel() was called.");
 
   m.def(
       "mesh_faces",
       [](const std::vector<std::string>& breps, double size, int order, std::optional<double> merge,
-         std::optional<double> merge_size, bool smooth, std::optional<std::vector<std::string>> names) {
+         std::optional<double> merge_size, bool smooth, std::optional<std::vector<std::string>> names,
+         mm::Progress* progress) {
         if (names && names->size() != breps.size())
           throw mm::InputError("mesh_faces: " + std::to_string(breps.size()) + " faces but " +
                                std::to_string(names->size()) + " names");
@@ -249,7 +298,7 @@ PYBIND11_MODULE(_medialmesh, m) {
         for (std::size_t i = 0; i < breps.size(); ++i)
           faces.push_back(
               mm::face_model_from_brep_string(breps[i], names ? (*names)[i] : "face " + std::to_string(i + 1)));
-        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth);
+        const mm::PipelineOptions options = pipeline_options(size, order, merge, merge_size, smooth, progress);
         mm::MeshedFaces meshed;
         {
           py::gil_scoped_release release;
@@ -259,14 +308,17 @@ PYBIND11_MODULE(_medialmesh, m) {
       },
       py::arg("breps"), py::arg("size"), py::arg("order") = 1, py::arg("merge") = 0.75,
       py::arg("merge_size") = py::none(), py::arg("smooth") = true, py::arg("names") = py::none(),
+      py::arg("progress") = py::none(),
       "All-quad mesh of several planar faces meshed together, each given as BREP text: where faces share a "
       "piece of edge in 3-D (coplanar or not, T-junctions included) they get the same nodes, and the result "
       "is one mesh: {'nodes': (N, 3) array, 'elements': (M, 4 or 8) 0-based node indices (corners "
       "counter-clockwise seen from each face's normal, then mid-side nodes), 'element_faces': (M,) index "
-      "into breps, 'element_blocks': (M,) block within its face, 'report': quality report of the merged mesh "
+      "into breps, 'element_blocks': (M,) block within its face, 'element_shape': (M,) Verdict shape, 'report': "
+      "quality report of the merged mesh "
       "(the keys of mesh()'s report, irregular nodes in 3-D, plus 'shared_edges'), 'faces': [{'report', "
-      "'decomposition'}] per face}. names name the faces in messages ('face 1', ... if left out). Raises "
-      "InputError for bad input, SelfCheckError when a stage or the merged mesh fails its own checks.");
+      "'decomposition'}] per face}. names name the faces in messages ('face 1', ... if left out); progress "
+      "as for mesh(). Raises InputError for bad input, SelfCheckError when a stage or the merged mesh fails "
+      "its own checks, Cancelled when progress.cancel() was called.");
 
   m.def(
       "read_faces",

@@ -37,7 +37,8 @@ def main(build, source):
              for half in ("left", "right")]
     size = 0.15
     m = _medialmesh.mesh_faces(breps, size, names=["left", "right"])
-    check(set(m) == {"nodes", "elements", "element_faces", "element_blocks", "report", "faces"}, f"keys {set(m)}")
+    check(set(m) == {"nodes", "elements", "element_faces", "element_blocks", "element_shape", "report", "faces"},
+          f"keys {set(m)}")
     nodes, elements = m["nodes"], m["elements"]
     check(nodes.shape[1] == 3 and elements.shape[1] == 4, f"shapes {nodes.shape} {elements.shape}")
     report = m["report"]
@@ -50,14 +51,19 @@ def main(build, source):
     check(all("frame" in f["decomposition"] for f in m["faces"]), "decomposition frames")
     gaps = np.linalg.norm(nodes[:, None, :] - nodes[None, :, :], axis=2) + np.eye(len(nodes))
     check(gaps.min() > 1e-6 * size, f"two nodes {gaps.min()} apart")
-    # Counter-clockwise seen from each face's normal; the area adds up.
-    area = 0.0
+    # Counter-clockwise seen from each face's normal; the area adds up; each element's shape as reported.
+    area, shapes = 0.0, []
     for e, face in zip(elements, m["element_faces"]):
         normal = np.array(m["faces"][face]["decomposition"]["frame"]["normal"])
         p = nodes[e]
         signed = 0.5 * sum(np.dot(np.cross(p[i], p[(i + 1) % 4]), normal) for i in range(4))
         check(signed > 0, f"element {e} is not counter-clockwise seen from its face's normal")
         area += signed
+        # Verdict's quad shape: the least over the corners of 2 x the corner's area / (its sides squared)
+        corners = [(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]) for i in range(4)]
+        shapes.append(min(2 * np.dot(np.cross(a, b), normal) / (a @ a + b @ b) for a, b in corners))
+    check(np.allclose(shapes, m["element_shape"], rtol=0, atol=1e-9), "element shapes")
+    check(abs(min(shapes) - report["measures"]["shape"]["min"]) < 1e-9, "the least shape as reported")
     faces_area = sum(f["report"]["area"] for f in m["faces"])
     check(abs(area - faces_area) < 1e-9 * faces_area, f"area {area} against {faces_area}")
     check(abs(area - (8 - math.pi / 4)) < 5e-3 * area, f"area {area}")

@@ -281,6 +281,7 @@ class BlockMesher {
 
   BlockMesh run() {
     prepare();
+    start_stage(options_.progress, "interval counts");
     const auto t0 = std::chrono::steady_clock::now();
     IntervalAssignment intervals;
     std::vector<std::string> relaxed;
@@ -297,8 +298,10 @@ class BlockMesher {
       fail(std::string("the blocks cannot be given interval counts: ") + e.what());
     }
     const auto t1 = std::chrono::steady_clock::now();
+    start_stage(options_.progress, "blocks", static_cast<int>(d_.blocks.size()));
     place(intervals.counts, intervals.params);
     const auto t2 = std::chrono::steady_clock::now();
+    start_stage(options_.progress, options_.smooth ? "smoothing" : "checks");
     BlockMesh result = finish();
     const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
     result.stage_seconds.insert(result.stage_seconds.begin(),
@@ -342,6 +345,7 @@ class BlockMesher {
     spread_along_boundary_runs(counts_);
     place_segment_nodes(counts_);
     for (std::size_t b = 0; b < d_.blocks.size(); ++b) {
+      step(options_.progress);
       try {
         fill_block(shapes_[b], params[b], outline_of(static_cast<int>(b)), static_cast<int>(b), mesh_,
                    options_.regrid_wide_folds);
@@ -396,6 +400,7 @@ class BlockMesher {
         smoothing.max_boundary_turn = 3 * kMaxTurnPerInterval;
         QuadMesh trial = mesh_;
         for (int pass = 0; pass < kFreeSmoothingPasses && poor(best); ++pass) {
+          check(options_.progress);
           const SmoothingResult r = smooth_mesh(face_, trial, smoothing);
           if (r.inverted_after < best.inverted_after ||
               (r.inverted_after == best.inverted_after && r.min_shape_after > best.min_shape_after))
@@ -408,6 +413,7 @@ class BlockMesher {
       // neither spares a face the free passes (by lifting it just over the
       // bar) nor starts them elsewhere; a mesh never comes out worse for it.
       if (best.inverted_after == 0) {
+        check(options_.progress);
         SmoothingOptions joint = smoothing;
         joint.max_boundary_turn = kMaxTurnPerInterval;
         joint.joint_search_only = true;
@@ -1623,6 +1629,7 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     p.equal_sums = equal_sums;
     return p;
   };
+  start_stage(options.progress, "interval counts");
   const auto t0 = std::chrono::steady_clock::now();
   IntervalAssignment intervals;
   std::vector<std::vector<std::string>> relaxed(faces.size());
@@ -1674,6 +1681,9 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
       run.insert(run.end(), nodes.begin() + (run.empty() ? 0 : 1), nodes.end());
     }
   };
+  std::size_t block_count = 0;
+  for (const auto& m : meshers) block_count += m->shapes().size();
+  start_stage(options.progress, "blocks", static_cast<int>(block_count));
   std::size_t first_block = 0;
   std::size_t next_stretch = 0;
   for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -1724,8 +1734,10 @@ FaceSetBlockMesh mesh_blocks_together(const std::vector<FaceModel>& faces,
     result.shared.push_back(std::move(piece));
   }
   const auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+  start_stage(options.progress, options.smooth ? "smoothing" : "checks", static_cast<int>(faces.size()));
   for (std::size_t f = 0; f < faces.size(); ++f) {
     BlockMesh mesh = meshers[f]->finish();
+    step(options.progress);
     // The assignment and placement were done for all faces at once.
     mesh.stage_seconds.insert(mesh.stage_seconds.begin(), {{"intervals", f == 0 ? seconds(t0, t1) : 0.0},
                                                            {"placement", f == 0 ? seconds(t1, t2) : 0.0}});

@@ -10,6 +10,7 @@
 #include "boundary/face_model.hpp"
 #include "decomposition/decomposition.hpp"
 #include "meshing/quad_mesh.hpp"
+#include "support/progress.hpp"
 
 namespace mm {
 
@@ -32,6 +33,9 @@ struct MeshingOptions {
   // piece gets the intervals that keep its sides within half of this
   // (smoothing then slides boundary nodes along their curves, unevenly).
   double max_sagitta = 0.2;
+  // Told each stage and block as meshing goes, and asked whether to stop
+  // (support/progress.hpp); nullptr: nobody is watching.
+  Progress* progress = nullptr;
 };
 
 struct BlockMesh {

@@ -468,9 +468,12 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   const auto start = Clock::now();
   MeshedFace result;
   StageSeconds stages;
+  Progress* progress = options.meshing.progress;
+  start_stage(progress, "medial axis");
   const FaceFlow flow = flow_of_face(face, stages);
   using Meshed = std::pair<Decomposition, BlockMesh>;
   const auto make = [&](const PipelineOptions& o, StageSeconds& attempt) {
+    start_stage(progress, "decomposition");
     Decomposition decomposition = decompose_flow(flow, o, attempt);
     BlockMesh blocks = mesh_blocks(flow.face, decomposition, o.meshing);
     return Meshed{std::move(decomposition), std::move(blocks)};
@@ -499,6 +502,7 @@ MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options) {
   if (!note.empty()) result.blocks.notes.push_back(note);
   for (const auto& [name, seconds] : passed) add_stage(stages, name, seconds);
   for (const auto& [name, seconds] : result.blocks.stage_seconds) add_stage(stages, name, seconds);
+  start_stage(progress, "quality");
   const auto t = Clock::now();
   result.quality = measure_quality(result.blocks.mesh, used.meshing.size);
   stages.emplace_back("quality", seconds_since(t));
@@ -512,8 +516,14 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   const auto start = Clock::now();
   MeshedFaces result;
   StageSeconds stages;
+  Progress* progress = options.meshing.progress;
+  const int face_count = static_cast<int>(faces.size());
+  start_stage(progress, "medial axis", face_count);
   std::vector<FaceFlow> flows;
-  for (const FaceModel& face : faces) flows.push_back(flow_of_face(face, stages));
+  for (const FaceModel& face : faces) {
+    flows.push_back(flow_of_face(face, stages));
+    step(progress);
+  }
   std::vector<FaceModel> taken;  // the faces as their medial axes took them
   for (const FaceFlow& f : flows) taken.push_back(f.face);
   std::vector<const FaceFlow*> flow_list;
@@ -521,7 +531,11 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
   using Meshed = std::pair<std::vector<Decomposition>, FaceSetBlockMesh>;
   const auto make = [&](const PipelineOptions& o, StageSeconds& attempt) {
     Meshed m;
-    for (std::size_t f = 0; f < faces.size(); ++f) m.first.push_back(decompose_flow(flows[f], o, attempt));
+    start_stage(progress, "decomposition", face_count);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      m.first.push_back(decompose_flow(flows[f], o, attempt));
+      step(progress);
+    }
     m.second = mesh_blocks_together(taken, m.first, o.meshing);
     return m;
   };
@@ -585,9 +599,11 @@ MeshedFaces mesh_faces(const std::vector<FaceModel>& faces, const PipelineOption
     reports.push_back(face.quality);
   }
   result.shared = std::move(blocks.shared);
+  start_stage(progress, "joining faces");
   auto t = Clock::now();
   result.mesh = merge_face_meshes(taken, meshes, result.shared, blocks.tolerance);
   stages.emplace_back("merge", seconds_since(t));
+  start_stage(progress, "quality");
   t = Clock::now();
   result.quality = combine_quality(reports, meshes, result.mesh);
   stages.emplace_back("quality", seconds_since(t));

@@ -11,7 +11,7 @@
 namespace mm {
 
 struct PipelineOptions {
-  MeshingOptions meshing;
+  MeshingOptions meshing;  // its progress is told every stage, and stops the run when cancelled
   bool merge = true;
   MergeTolerance tolerance;                   // factor 0.75 of the medial radius unless told otherwise
   bool split_concave_corners = false;         // DecompositionOptions::split_concave_corners
@@ -71,6 +71,8 @@ struct MeshedFace {
 // (Decomposition::wrapped_holes) is made again with such holes framed, and
 // the better kept. MeshedFace::fallbacks lists what was used, and a note in
 // blocks.notes says why.
+// With options.meshing.progress, each stage and block is told to it as it
+// starts, and Cancelled is thrown between them once it is cancelled.
 MeshedFace mesh_face(const FaceModel& face, const PipelineOptions& options);
 
 // The face as the medial axis took it, its axis and its mesh flow, as
