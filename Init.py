@@ -21,7 +21,11 @@ for _folder in sys.path + [
     os.path.join(FreeCAD.getHomePath(), "Mod", "MedialMesh"),
 ]:
     if os.path.isfile(os.path.join(_folder, "Mod", "MedialMesh", "__init__.py")):
-        _addon = os.path.realpath(_folder)
+        # Not realpath: through the user Mod folder's link, as FreeCAD names
+        # the addon in __ModDirs__. FreeCAD (0.20.2 as Debian patches it, and
+        # later) restores a saved object's proxy only from a module under one
+        # of those folders; under the link's target it would be refused.
+        _addon = os.path.abspath(_folder)
         break
 
 if _addon is None:

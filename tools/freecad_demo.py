@@ -15,6 +15,7 @@ in STEM.ccx/).
 
 import os
 import sys
+import time
 import traceback
 
 out = sys.__stdout__  # the GUI may take sys.stdout for its report view
@@ -37,25 +38,39 @@ def show_only(doc, shown):
 
 
 def quad_mesh_command(doc, part):
-    """Mesh Face1 of `part` as a user does: select it, press Quad mesh, press
-    OK in the task panel; save a picture of the mesh; return the mesh object."""
+    """Mesh Face1 of `part` as a user does: select it, press Quad mesh (its
+    panel meshes it), press OK in the task panel once the panel has meshed it;
+    save a picture of the mesh; return the mesh object."""
     import FreeCADGui
-    from PySide2 import QtWidgets
+    from PySide2 import QtCore, QtWidgets
+
+    def wait_until(condition, what, seconds=300):
+        end = time.monotonic() + seconds
+        while not condition():
+            if time.monotonic() > end:
+                raise RuntimeError(f"the Quad mesh task panel: {what} after {seconds} s")
+            QtWidgets.QApplication.processEvents(QtCore.QEventLoop.AllEvents, 50)
+            time.sleep(0.01)
 
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(doc.Name, part.Name, "Face1")
     FreeCADGui.runCommand("MedialMesh_QuadMesh")
     FreeCADGui.updateGui()
     mesh = next((o for o in doc.Objects if getattr(o, "Type", "") == "MedialMesh::QuadMesh"), None)
-    if getattr(mesh, "Status", None) != "ok":
-        raise RuntimeError(f"the quad mesh failed: {getattr(mesh, 'Status', 'no mesh object')}")
+    if mesh is None or not FreeCADGui.Control.activeDialog():
+        raise RuntimeError("the Quad mesh task panel did not open")
+    stop = FreeCADGui.getMainWindow().findChild(QtWidgets.QPushButton, "stop")
+    wait_until(lambda: not stop.isEnabled(), "still meshing")
     buttons = [box.button(QtWidgets.QDialogButtonBox.Ok)
                for box in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDialogButtonBox)]
     ok = next((b for b in buttons if b is not None and b.isVisible() and b.isEnabled()), None)
     if ok is None:
-        raise RuntimeError("the Quad mesh task panel did not open")
+        raise RuntimeError("the Quad mesh task panel has no OK button")
     ok.click()
+    wait_until(lambda: not FreeCADGui.Control.activeDialog(), "still open")
     FreeCADGui.updateGui()
+    if mesh.Status != "ok":
+        raise RuntimeError(f"the quad mesh failed: {mesh.Status}")
     show_only(doc, [part, mesh])
     FreeCADGui.ActiveDocument.ActiveView.saveImage(os.environ["MEDIALMESH_DEMO_OUT"] + ".quadmesh.png", 1000, 800,
                                                    "White")

@@ -17,6 +17,7 @@ except ImportError as error:
 # re-exported so that callers need not import _medialmesh
 InputError = _medialmesh.InputError
 SelfCheckError = _medialmesh.SelfCheckError
+Cancelled = _medialmesh.Cancelled  # raised by mesh_face when its progress.cancel() was called
 
 
 def boundary_model(face, name="face"):
@@ -97,7 +98,7 @@ def make_decomposition_object(doc, obj, subname, merge=0.75):
     return make(doc, obj, subname, merge=merge)
 
 
-def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=None):
+def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=None, progress=None):
     """Quad-mesh a planar Part.Face (placed in 3-D as it is) or a list of them.
 
     size: target element size (None or 0: the bounding-box diagonal / 20);
@@ -111,12 +112,16 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
     max_edge_ratio, max_skew, poor_shape, needles, worst_position,
     irregular_nodes, seconds, and the full report with every Verdict measure
     under "measures"),
-    notes, placement (the first face's 2-D frame) and per_face.
-    Raises InputError naming the face and the problem.
+    notes, placement (the first face's 2-D frame), per_face, fallbacks, and
+    nodes, elements and element_shape as numpy arrays.
+    progress: a MedialMesh.meshing.Progress, to follow the call from another
+    thread (text(), fraction()) and stop it (cancel()).
+    Raises InputError naming the face and the problem, SelfCheckError when a
+    stage fails its own checks, Cancelled when progress.cancel() was called.
     """
     from .meshing import mesh_face as mesh
 
-    return mesh(face_or_faces, size=size, order=order, merge=merge, smooth=smooth, name=name)
+    return mesh(face_or_faces, size=size, order=order, merge=merge, smooth=smooth, name=name, progress=progress)
 
 
 def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=True, analysis=None,

@@ -1,5 +1,12 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The workbench's commands."""
+"""The workbench's commands.
+
+Each is active as soon as something is selected in an open document; what
+it cannot use (a curved face, an edge, a mesh, a solid where one face is
+wanted) is named in the status bar and the report view with what it needs,
+rather than the button staying grey with no word why. With nothing
+selected the buttons are grey, and their tooltips say what to select.
+"""
 
 import os
 
@@ -10,15 +17,7 @@ import Part
 from . import objects
 from .viewproviders import ICON_FOLDER
 
-
-def selected_faces():
-    """(object, 'FaceN', face) for every face picked in the 3D view or tree."""
-    faces = []
-    for selection in FreeCADGui.Selection.getSelectionEx():
-        for subname, shape in zip(selection.SubElementNames, selection.SubObjects):
-            if isinstance(shape, Part.Face):
-                faces.append((selection.Object, subname, shape))
-    return faces
+STATUS_SECONDS = 15  # how long a message stays in the status bar
 
 
 def is_planar(face):
@@ -28,39 +27,120 @@ def is_planar(face):
         return False
 
 
-class PlanarFaceCommand:
-    """A command on the selected planar faces, active when there is one;
-    subclasses say which faces count as selected and what to do with them."""
+def surface_name(face):
+    """'cylinder', 'B-spline surface', ...: what a curved face is."""
+    name = type(face.Surface).__name__  # Cylinder, BSplineSurface, SurfaceOfRevolution, ...
+    return {"BSplineSurface": "B-spline surface", "BezierSurface": "Bezier surface",
+            "SurfaceOfRevolution": "surface of revolution", "SurfaceOfExtrusion": "surface of extrusion",
+            "OffsetSurface": "offset surface"}.get(name, name.lower())
+
+
+def faces(count, what):
+    """'1 curved face', '3 curved faces'."""
+    return f"{count} {what}{'' if count == 1 else 's'}"
+
+
+def explain(text, advice=""):
+    """Say why a selection cannot be used: in the status bar (which has room
+    for a line), and with the advice in the report view."""
+    FreeCAD.Console.PrintWarning(f"MedialMesh: {text}{'. ' + advice if advice else ''}\n")
+    # FreeCAD also puts a warning into the status bar, by a queued event
+    # that would replace this shorter line: shown after it.
+    from PySide import QtCore
+
+    def show():
+        try:
+            FreeCADGui.getMainWindow().statusBar().showMessage(f"MedialMesh: {text}", STATUS_SECONDS * 1000)
+        except Exception:  # no main window (a closing GUI): the report view has it
+            pass
+
+    QtCore.QTimer.singleShot(0, show)
+
+
+class Selection:
+    """What is selected, read for a command: the planar faces it can use,
+    as (object, 'FaceN', face), and why the rest cannot be used."""
+
+    def __init__(self, whole_solids):
+        """whole_solids: a solid picked whole gives its planar faces (the
+        Quad mesh command), rather than a request to pick one."""
+        self.faces, self.problems = [], []
+        for selection in FreeCADGui.Selection.getSelectionEx():
+            obj = selection.Object
+            if selection.SubElementNames:
+                for subname, shape in zip(selection.SubElementNames, selection.SubObjects):
+                    self.read_element(obj, subname, shape)
+            else:
+                self.read_object(obj, whole_solids)
+
+    def read_element(self, obj, subname, shape):
+        name = f"{obj.Label}.{subname}"
+        if isinstance(shape, Part.Face):
+            if is_planar(shape):
+                self.faces.append((obj, subname, shape))
+            else:
+                self.problems.append(f"{name} is a curved face ({surface_name(shape)}): planar faces only")
+        else:
+            kind = {"Edge": "an edge", "Vertex": "a vertex"}.get(subname.rstrip("0123456789"), f"a {subname}")
+            self.problems.append(f"{name} is {kind}, not a face")
+
+    def read_object(self, obj, whole_solids):
+        shape = getattr(obj, "Shape", None)
+        if obj.isDerivedFrom("Fem::FemMeshObject") or obj.isDerivedFrom("Mesh::Feature"):
+            self.problems.append(f"{obj.Label} is a mesh, not a part")
+            return
+        if not isinstance(shape, Part.Shape) or shape.isNull() or not shape.Faces:
+            self.problems.append(f"{obj.Label} has no faces")
+            return
+        planar = [(obj, f"Face{i}", face) for i, face in enumerate(shape.Faces, 1) if is_planar(face)]
+        curved = len(shape.Faces) - len(planar)
+        if shape.Solids and not whole_solids:
+            self.problems.append(f"{obj.Label} is a whole solid: pick one of its planar faces")
+            return
+        self.faces.extend(planar)
+        if not planar:
+            self.problems.append(f"{obj.Label} has no planar face")
+        elif curved:
+            self.problems.append(f"{obj.Label}: {faces(curved, 'curved face')} left out, "
+                                 f"{faces(len(planar), 'planar face')} meshed")
+
+
+class SelectionCommand:
+    """A command on the selected planar faces: active when anything is
+    selected; subclasses say what to do with the faces (run_on)."""
 
     name = ""  # the transaction's name, and the command's in messages
-
-    def selection(self):
-        return selected_faces()
+    whole_solids = False  # see Selection
+    needs = ""  # what to select, for the messages
 
     def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and any(is_planar(face) for _, _, face in self.selection())
+        return FreeCAD.ActiveDocument is not None and bool(FreeCADGui.Selection.getSelectionEx())
 
     def Activated(self):
         # Runs from a toolbar: nothing may escape into FreeCAD.
         try:
-            self.run_on_selection()
+            selection = Selection(self.whole_solids)
+            if not selection.faces:
+                why = "; ".join(selection.problems) or "nothing it can use is selected"
+                explain(f"{self.name}: {why}", f"To use it, {self.needs}")
+                return
+            for problem in selection.problems:
+                explain(f"{self.name}: {problem}")
+            self.run_on(selection.faces)
         except Exception as error:
             FreeCAD.Console.PrintError(f"MedialMesh: {self.name} failed: {error!r}\n")
 
 
-class FaceCommand(PlanarFaceCommand):
+class FaceCommand(SelectionCommand):
     """A command that makes one object per selected planar face, in one
     transaction; subclasses say what to make and what to tell the user."""
 
-    def run_on_selection(self):
+    needs = "select one or more planar faces (click them in the 3D view)"
+
+    def run_on(self, faces):
         doc = FreeCAD.ActiveDocument
         doc.openTransaction(self.name)
-        made = []
-        for obj, subname, face in self.selection():
-            if not is_planar(face):
-                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar\n")
-                continue
-            made.append(self.make(doc, obj, subname))
+        made = [self.make(doc, obj, subname) for obj, subname, _ in faces]
         doc.commitTransaction()
         for obj in made:
             if obj.Status.startswith("ok"):
@@ -78,7 +158,8 @@ class CommandAnalyse(FaceCommand):
             "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_Analyse.svg"),
             "MenuText": "Analyse face",
             "ToolTip": "Show the medial axis of the selected planar faces, coloured by mesh flow type, "
-            "and their mesh singularities with their k",
+            "and their mesh singularities with their k. Select planar faces in the 3D view first.",
+            "StatusTip": "Analyse face: select one or more planar faces in the 3D view, then press",
         }
 
     def make(self, doc, obj, subname):
@@ -99,7 +180,9 @@ class CommandDecompose(FaceCommand):
             "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_Decompose.svg"),
             "MenuText": "Decompose face",
             "ToolTip": "Split the selected planar faces into blocks for quad meshing, "
-            "each holding at most one singularity; the splits also go into a Sketch on the face",
+            "each holding at most one singularity; the splits also go into a Sketch on the face. "
+            "Select planar faces in the 3D view first.",
+            "StatusTip": "Decompose face: select one or more planar faces in the 3D view, then press",
         }
 
     def make(self, doc, obj, subname):
@@ -110,79 +193,54 @@ class CommandDecompose(FaceCommand):
                 f"{obj.SubmapBlocks} submapped), {obj.FixedCount} fixed singularities")
 
 
-def selected_faces_and_sheets():
-    """selected_faces(), and every face of an object picked whole (in the
-    tree) whose shape is faces without a solid: a face made from a sketch, a
-    plane, an imported sheet. A solid picked whole gives nothing: which of
-    its faces is meant is not known."""
-    faces = selected_faces()
-    for selection in FreeCADGui.Selection.getSelectionEx():
-        shape = getattr(selection.Object, "Shape", None)
-        if selection.SubElementNames or not isinstance(shape, Part.Shape) or shape.isNull() or shape.Solids:
-            continue
-        faces.extend((selection.Object, f"Face{i}", face) for i, face in enumerate(shape.Faces, 1))
-    return faces
-
-
-class CommandQuadMesh(PlanarFaceCommand):
+class CommandQuadMesh(SelectionCommand):
     """Mesh the selected planar faces together into one parametric quad mesh,
     put it into the active FEM Analysis and open its task panel, as FreeCAD's
-    Gmsh command does (femcommands/commands.py, _MeshGmshFromShape)."""
+    Gmsh command does (femcommands/commands.py, _MeshGmshFromShape). The
+    panel meshes it, off the GUI thread."""
 
     name = "Quad mesh"
+    whole_solids = True
+    needs = ("select planar faces in the 3D view, or a part, sketch face or sheet in the tree "
+             "(its planar faces are meshed together)")
 
     def GetResources(self):
         return {
             "Pixmap": os.path.join(ICON_FOLDER, "MedialMesh_QuadMesh.svg"),
             "MenuText": "Quad mesh",
-            "ToolTip": "Mesh the selected planar faces (or face objects picked in the tree) together with "
-            "quads into one FEM mesh object, put into the active Analysis; set its parameters in the task panel",
+            "ToolTip": "Mesh the selected planar faces together with quads into one FEM mesh object, put into "
+            "the active Analysis; set its parameters in the task panel. Select planar faces in the 3D view, "
+            "or a whole part in the tree to mesh all its planar faces.",
+            "StatusTip": "Quad mesh: select planar faces, or a part in the tree, then press",
         }
 
-    def selection(self):
-        return selected_faces_and_sheets()
-
-    def run_on_selection(self):
+    def run_on(self, faces):
         if FreeCADGui.Control.activeDialog():
-            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: close the open task dialog first\n")
+            explain(f"{self.name}: close the open task dialog first")
             return
         doc = FreeCAD.ActiveDocument
-        faces = []
-        for obj, subname, face in self.selection():
-            if is_planar(face):
-                faces.append((obj, subname))
-            else:
-                FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}.{subname}: the face is not planar; "
-                                           "left out of the quad mesh\n")
-        if not faces:
-            FreeCAD.Console.PrintError(f"MedialMesh: {self.name}: no planar face selected\n")
-            return
         import FemGui
 
         analysis = FemGui.getActiveAnalysis()
         if analysis is not None and analysis.Document != doc:
             analysis = None
+        pairs = [(obj, subname) for obj, subname, _ in faces]
         # The task panel ends this transaction: OK commits it, Cancel aborts
         # it and so takes the new object back (see taskpanels).
         doc.openTransaction(self.name)
         try:
-            if len({obj.Name for obj, _ in faces}) == 1:
-                mesh = objects.make_mesh_object(doc, faces[0][0], [subname for _, subname in faces],
-                                                analysis=analysis)
-            else:
-                mesh = objects.make_mesh_object(doc, faces, None, analysis=analysis)
+            mesh = objects.make_mesh_object(doc, pairs, None, analysis=analysis, compute=False)
         except Exception:
             doc.abortTransaction()
             raise
         FreeCADGui.Selection.clearSelection()
-        if mesh.Status.startswith("ok"):
-            FreeCAD.Console.PrintMessage(f"MedialMesh: {mesh.Label}: {mesh.QuadCount} quads\n")
         opened = False
         try:
             mesh.ViewObject.Proxy.just_created = True
             opened = FreeCADGui.getDocument(doc.Name).setEdit(mesh.Name, 0)
         finally:
-            if not opened:  # no panel to end the transaction: the object stays, as made
+            if not opened:  # no panel to mesh it and end the transaction: mesh it here, as made
+                mesh.recompute()
                 doc.commitTransaction()
                 if hasattr(mesh.ViewObject.Proxy, "just_created"):
                     mesh.ViewObject.Proxy.just_created = False

@@ -16,9 +16,9 @@ a parameter changes, and a failure leaves an empty FemMesh and the problem.
 import Fem
 import FreeCAD
 import Part
-from _medialmesh import InputError, SelfCheckError
+from _medialmesh import InputError
 
-from . import analysis, decomposition, meshing
+from . import analysis, decomposition, meshing, messages
 
 TYPE = "MedialMesh::Analysis"
 DECOMPOSITION_TYPE = "MedialMesh::Decomposition"
@@ -197,10 +197,9 @@ def clear_results(obj, status):
 
 
 def report_failure(obj, error):
-    """Put the problem of a failed execute in the report view and return it.
-    An InputError or SelfCheckError names the face already; anything else gets it here."""
-    named = isinstance(error, (ValueError, SelfCheckError))
-    message = str(error) if named else f"{describe_source(obj)}: internal error: {error!r}"
+    """Put the problem of a failed execute in the report view, worded as
+    everywhere (messages.failure_message), and return it."""
+    message = messages.failure_message(error, describe_source(obj))
     FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}: {message}\n")
     return message
 
@@ -223,6 +222,24 @@ def describe_source(obj):
     return ", ".join(f"{source.Label}.{','.join(subnames) or '?'}" for source, subnames in links)
 
 
+def unique_label(doc, kind, faces):
+    """'QuadMesh (Plate Face1)': the kind of object and the face it is of
+    ('Plate Face1 + 2 faces' for several), made unique by a number after
+    the kind ('QuadMesh 2 (Plate Face1)'), never by changing the face's
+    name as FreeCAD's own rule would ('..._Face069' for a second mesh of
+    Face68). faces: (object, 'FaceN') pairs."""
+    first, subname = faces[0]
+    others = len(faces) - 1
+    what = f"{first.Label} {subname}" + (f" + {others} face{'s' if others > 1 else ''}" if others else "")
+    taken = {o.Label for o in doc.Objects}
+    number = 1
+    while True:
+        label = f"{kind}{f' {number}' if number > 1 else ''} ({what})"
+        if label not in taken and f"{label} splits" not in taken:
+            return label
+        number += 1
+
+
 def make_analysis_object(doc, obj, subname, merge=0.75, name="MedialAnalysis"):
     """Create the parametric analysis of face `subname` ('Face3') of `obj` in
     `doc`, compute it and return it. merge: the MergeFactor (0: no merging)."""
@@ -230,7 +247,7 @@ def make_analysis_object(doc, obj, subname, merge=0.75, name="MedialAnalysis"):
     MedialAnalysis(analysis_obj)
     analysis_obj.Source = (obj, [subname])
     analysis_obj.MergeFactor = merge
-    analysis_obj.Label = f"{name}_{obj.Label}_{subname}"
+    analysis_obj.Label = unique_label(doc, "MedialAxis", [(obj, subname)])
     if FreeCAD.GuiUp:
         attach_view_provider(analysis_obj)
     analysis_obj.recompute()
@@ -245,9 +262,9 @@ def make_decomposition_object(doc, obj, subname, merge=0.75, name="MedialDecompo
     MedialDecomposition(decomposition_obj)
     decomposition_obj.Source = (obj, [subname])
     decomposition_obj.MergeFactor = merge
-    decomposition_obj.Label = f"{name}_{obj.Label}_{subname}"
+    decomposition_obj.Label = unique_label(doc, "Decomposition", [(obj, subname)])
     sketch = doc.addObject("Sketcher::SketchObject", name + "Sketch")
-    sketch.Label = f"{decomposition_obj.Label}_Sketch"
+    sketch.Label = f"{decomposition_obj.Label} splits"
     decomposition_obj.Sketch = sketch
     if FreeCAD.GuiUp:
         attach_view_provider(decomposition_obj)
@@ -257,6 +274,7 @@ def make_decomposition_object(doc, obj, subname, merge=0.75, name="MedialDecompo
 
 
 ELEMENT_ORDERS = ["1st", "2nd"]  # as FreeCAD's Gmsh mesh object names them
+NOT_MESHED = "not meshed yet"  # the Status of a mesh object made with compute=False
 
 
 class MedialQuadMesh(MedialObject):
@@ -323,30 +341,103 @@ class MedialQuadMesh(MedialObject):
 
     def compute(self, obj):
         faces, names = linked_faces(obj)
-        if obj.Part != obj.Source[0][0]:
-            obj.Part = obj.Source[0][0]
-        result = meshing.mesh_face(faces, name=names, **mesh_arguments(obj.ElementSize.Value, obj.ElementOrder,
-                                                                       obj.MergeFactor, obj.Smoothing))
-        obj.FemMesh = result.femmesh
-        quality = result.quality
-        obj.QuadCount = quality["quads"]
-        obj.NodeCount = quality["nodes"]
-        obj.MinScaledJacobian = quality["min_scaled_jacobian"]
-        obj.MeanScaledJacobian = quality["mean_scaled_jacobian"]
-        obj.MinShape = quality["min_shape"]
-        obj.MeanShape = quality["mean_shape"]
-        obj.MaxEdgeRatio = quality["max_edge_ratio"]
-        obj.MaxSkew = quality["max_skew"]
-        obj.PoorShapeCount = quality["poor_shape"]
-        obj.NeedleCount = quality["needles"]
-        if "worst_position" in quality:
-            obj.WorstElementPosition = quality["worst_position"]
-        obj.IrregularNodes = quality["irregular_nodes"]
-        obj.Seconds = quality["seconds"]
-        obj.Notes = result.notes
-        obj.Status = ok_status(obj, result.fallbacks)
-        if obj.Sketch:
-            update_sketch(obj.Sketch, result.placement, result.splits)
+        key = mesh_key(obj, faces)
+        result = recent_mesh(obj, key)  # after an Undo or Redo: the mesh the values had
+        if result is None:
+            result = meshing.mesh_face(faces, name=names, **mesh_arguments(obj.ElementSize.Value, obj.ElementOrder,
+                                                                           obj.MergeFactor, obj.Smoothing))
+        store_mesh(obj, result, key)
+
+    def onChanged(self, obj, prop):
+        # FreeCAD's Undo and Redo restore the parameters and the Results but
+        # not the FemMesh: the mesh drawn would not be the one the values
+        # say. Recomputed once the Undo is done, the object takes the mesh
+        # back from its recent ones (or meshes again).
+        if prop not in MESH_PARAMETERS or not getattr(obj.Document, "Transacting", False):
+            return
+        if FreeCAD.GuiUp and not getattr(self, "follow_undo_pending", False):
+            from PySide import QtCore
+
+            self.follow_undo_pending = True
+            QtCore.QTimer.singleShot(0, lambda: self.follow_undo(obj.Document.Name, obj.Name))
+
+    def follow_undo(self, doc_name, name):
+        self.follow_undo_pending = False
+        try:
+            doc = FreeCAD.getDocument(doc_name)
+            obj = doc.getObject(name)
+            if obj is not None and "Touched" in obj.State:
+                obj.recompute()
+                obj.purgeTouched()  # the mesh is the values' again
+        except Exception as error:  # a timer's slot: nothing may escape into FreeCAD
+            FreeCAD.Console.PrintError(f"MedialMesh: {name}: cannot follow the Undo: {error!r}\n")
+
+
+# The quad mesh's parameters: a change of any makes another mesh.
+MESH_PARAMETERS = ("ElementSize", "MergeFactor", "ElementOrder", "Smoothing")
+# The meshes a quad mesh object keeps in memory (never saved) to take back
+# on Undo and Redo, the newest first, if they are under this many elements.
+RECENT_MESHES = 2
+RECENT_MESH_MAX_QUADS = 300_000
+
+
+def mesh_key(obj, faces, values=None):
+    """What a mesh of obj is for: its parameter values (or `values`, a dict
+    of them) and its faces' geometry."""
+    values = values or {name: getattr(obj, name) for name in MESH_PARAMETERS}
+    size = values["ElementSize"]
+    size = size.Value if hasattr(size, "Value") else size
+    parameters = (size, values["MergeFactor"], values["ElementOrder"], values["Smoothing"])
+    return parameters, tuple(hash(face.exportBrepToString()) for face in faces)
+
+
+def recent_mesh(obj, key):
+    """The result kept for this key (see RECENT_MESHES), or None."""
+    return next((result for k, result in getattr(obj.Proxy, "recent", []) if k == key), None)
+
+
+def store_mesh(obj, result, key=None):
+    """Put a mesh_face result for obj's faces and parameters into the quad
+    mesh object: its FemMesh, the Results, the Sketch. The task panel stores
+    the mesh it made off the GUI thread this way, so that OK never meshes
+    again. key (mesh_key): kept with the result for Undo and Redo."""
+    if key is not None and result.quality["quads"] <= RECENT_MESH_MAX_QUADS:
+        recent = [(k, r) for k, r in getattr(obj.Proxy, "recent", []) if k != key]
+        obj.Proxy.recent = [(key, result)] + recent[:RECENT_MESHES - 1]
+    if obj.Part != obj.Source[0][0]:
+        obj.Part = obj.Source[0][0]
+    obj.Proxy.element_shape = result.element_shape  # for the view's colours; not saved
+    obj.FemMesh = result.femmesh
+    quality = result.quality
+    obj.QuadCount = quality["quads"]
+    obj.NodeCount = quality["nodes"]
+    obj.MinScaledJacobian = quality["min_scaled_jacobian"]
+    obj.MeanScaledJacobian = quality["mean_scaled_jacobian"]
+    obj.MinShape = quality["min_shape"]
+    obj.MeanShape = quality["mean_shape"]
+    obj.MaxEdgeRatio = quality["max_edge_ratio"]
+    obj.MaxSkew = quality["max_skew"]
+    obj.PoorShapeCount = quality["poor_shape"]
+    obj.NeedleCount = quality["needles"]
+    if "worst_position" in quality:
+        obj.WorstElementPosition = quality["worst_position"]
+    obj.IrregularNodes = quality["irregular_nodes"]
+    obj.Seconds = quality["seconds"]
+    obj.Notes = result.notes
+    obj.Status = ok_status(obj, result.fallbacks)
+    if obj.Sketch:
+        update_sketch(obj.Sketch, result.placement, result.splits)
+
+
+def store_failure(obj, message):
+    """Empty the quad mesh object and put why into its Status: what execute
+    does when meshing fails, for a failure the task panel met off the GUI
+    thread and has said already (messages.failure_message)."""
+    obj.Proxy.clear_output(obj)
+    clear_results(obj, message)
+    if obj.Sketch:
+        obj.Sketch.deleteAllGeometry()
+        obj.Sketch.recompute()
 
 
 def ok_status(obj, fallbacks):
@@ -354,9 +445,9 @@ def ok_status(obj, fallbacks):
     mesh a fallback made is returned, but the user should know it was."""
     if not fallbacks:
         return "ok"
-    names = ", ".join(fallbacks)
-    FreeCAD.Console.PrintWarning(f"MedialMesh: {obj.Label}: meshed by a fallback ({names}); see its Notes\n")
-    return f"ok (fallback: {names})"
+    FreeCAD.Console.PrintWarning(f"MedialMesh: {obj.Label}: meshed by a fallback ({', '.join(fallbacks)}); "
+                                 "see the task panel's messages or its Notes\n")
+    return messages.fallback_message(fallbacks)
 
 
 def mesh_arguments(size, order, merge, smooth):
@@ -406,13 +497,15 @@ def _target_analysis(doc, analysis_obj):
 
 
 def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=True, analysis=None,
-                     name="MedialQuadMesh"):
+                     name="MedialQuadMesh", compute=True):
     """Create the parametric quad mesh of faces `subnames` ('Face3' or a list)
     of `obj` in `doc` (or, with subnames None, of the (object, 'FaceN') pairs
     `obj`), with its Sketch, put it into `analysis` (or the active FEM
     analysis, or the document's only one), compute it and return it.
     size: element size (None or 0: automatic); order 1 or 2; merge: the
-    MergeFactor (None or 0: no merging); smooth: Smoothing."""
+    MergeFactor (None or 0: no merging); smooth: Smoothing. compute=False
+    leaves it to be meshed (the Quad mesh command's task panel meshes it
+    off the GUI thread and stores the result)."""
     pairs = _source_links(obj, subnames)
     if order not in (1, 2):
         raise InputError(f"make_mesh_object: element order must be 1 or 2, got {order!r}")
@@ -423,11 +516,10 @@ def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=
     mesh_obj.ElementOrder = ELEMENT_ORDERS[order - 1]
     mesh_obj.MergeFactor = merge or 0
     mesh_obj.Smoothing = smooth
-    first, first_subname = pairs[0]
-    mesh_obj.Part = first
-    mesh_obj.Label = f"{name}_{first.Label}_{first_subname}" + ("_etc" if len(pairs) > 1 else "")
+    mesh_obj.Part = pairs[0][0]
+    mesh_obj.Label = unique_label(doc, "QuadMesh", pairs)
     sketch = doc.addObject("Sketcher::SketchObject", name + "Sketch")
-    sketch.Label = f"{mesh_obj.Label}_Sketch"
+    sketch.Label = f"{mesh_obj.Label} splits"
     mesh_obj.Sketch = sketch
     target = _target_analysis(doc, analysis)
     if target is not None:
@@ -435,5 +527,8 @@ def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=
     if FreeCAD.GuiUp:
         attach_view_provider(mesh_obj)
         sketch.ViewObject.Visibility = False  # the mesh shows the same lines
-    mesh_obj.recompute()
+    if compute:
+        mesh_obj.recompute()
+    else:
+        mesh_obj.Status = NOT_MESHED
     return mesh_obj

@@ -2,23 +2,30 @@
 """The task panel of a MedialMesh quad mesh object, as FreeCAD's Gmsh mesh
 has one (femtaskpanels/task_mesh_gmsh.py).
 
-It edits ElementSize, MergeFactor, ElementOrder and Smoothing. Preview meshes
-the linked faces with the panel's values in a worker thread (the core lets go
-of the GIL while it meshes, so the GUI keeps drawing) and shows the mesh and
-the decomposition splits in the 3D view as a Coin node of the view, not of the
-document; the object itself is hidden meanwhile. Nothing in the document
-changes before OK. OK and Cancel wait for a running preview to finish: the
-core cannot be stopped, and FreeCAD's meshes must not be built in two threads
-at once.
+It edits ElementSize, MergeFactor, ElementOrder and Smoothing. Meshing runs
+in a worker thread (the core lets go of the GIL while it meshes, and the
+FemMesh is built in chunks), never on the GUI thread: a progress bar tells
+the stage and the blocks done, Stop (and Cancel) stop it within a step.
+Preview shows the mesh and the decomposition splits in the 3D view as a
+Coin node of the view, not of the document; the object itself is hidden
+meanwhile. Nothing in the document changes before OK.
 
-OK writes the values that changed into the object and recomputes, in one
-transaction. Cancel leaves the document as it was. When the Quad mesh command
-opened the panel on the object it had just made (created=True), that object
-is part of what Cancel takes back: the command's transaction is still open
-and Cancel aborts it (before resetEdit, which would commit it), as
-PartDesign's feature panels do, so the object, its Sketch and its place in
-the Analysis go and the undo stack is as before; OK commits it as one undo
-step.
+Mesh once: OK stores the mesh the panel made for the values shown (by
+Preview, or by the run the panel starts on a new object) into the object
+without meshing again. When there is none (the values changed since), OK
+meshes in the worker with the progress bar and stores the result when it is
+done; the panel closes then. Handing the mesh to FreeCAD (the FemMesh
+property, drawn by FreeCAD's FEM mesh view) is the one step on the GUI
+thread.
+
+OK writes the values that changed into the object, in one transaction.
+Cancel stops a run and leaves the document as it was. When the Quad mesh
+command opened the panel on the object it had just made (created=True),
+that object is part of what Cancel takes back: the command's transaction
+is still open and Cancel aborts it (before resetEdit, which would commit
+it), as PartDesign's feature panels do, so the object, its Sketch and its
+place in the Analysis go and the undo stack is as before; OK commits it as
+one undo step.
 """
 
 import threading
@@ -26,19 +33,23 @@ import time
 
 import FreeCAD
 import FreeCADGui
+import numpy
 from pivy import coin
 from PySide import QtCore, QtGui
 
-from . import decomposition, objects, viewproviders
+from . import decomposition, meshing, messages, objects, viewproviders
 
 PREVIEW_FACE_COLOUR = (0.82, 0.88, 1.0)
 PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
 # A mesh bigger than this (in estimated quads) would take minutes and
 # gigabytes; the panel refuses it with a message rather than hang.
 MAX_QUADS = 2_000_000
-SHOW_PROGRESS_AFTER = 1.0  # seconds: shorter runs just finish
+PREVIEW_EDGES_UP_TO = 200_000  # elements; a preview of more draws their faces only
+POLL_SECONDS = 0.1  # how often the panel reads the worker's progress
 NO_MERGING = 0.2  # the merge factor field's minimum, which stands for 0: no merging
-QUALITY_LINES = 9  # the quality summary: a heading, six lines, room to wrap
+QUALITY_LINES = 8  # the quality summary: a heading, six lines, room to wrap
+MESSAGE_ROWS = 6  # the messages list's height in rows; it scrolls beyond
+WARNING_COLOUR = "#a05a00"
 
 
 def too_many_quads(faces, size, names):
@@ -62,10 +73,40 @@ def quality_text(quality, separator=", "):
         f"{quality['irregular_nodes']} irregular nodes, {quality['seconds']:.2f} s"))
 
 
-def fallback_line(obj):
-    """The Status's fallback on a line of its own, or nothing."""
-    status = obj.Status
-    return "\n" + status[len("ok ("):-1] if status.startswith("ok (") else ""
+class MeshRun:
+    """One meshing of the panel's faces with one set of values, in a worker
+    thread: its progress, and when done its result or error."""
+
+    def __init__(self, faces, names, values):
+        self.values = values
+        self.names = ", ".join(names)
+        self.progress = meshing.Progress()
+        self.result = None  # a FaceMesh
+        self.geometry = None  # its preview, as flat lists for Coin
+        self.error = None
+        self.started = time.monotonic()
+        arguments = objects.mesh_arguments(values["ElementSize"], values["ElementOrder"], values["MergeFactor"],
+                                           values["Smoothing"])
+
+        def work():
+            try:
+                result = meshing.mesh_face(faces if len(faces) > 1 else faces[0], name=names,
+                                           progress=self.progress, **arguments)
+                self.geometry = preview_geometry(result)
+                self.result = result
+            except BaseException as error:  # handed to the GUI thread
+                self.error = error
+
+        self.thread = threading.Thread(target=work, name="MedialMesh meshing", daemon=True)
+        self.thread.start()
+
+    def running(self):
+        return self.thread.is_alive()
+
+    def stop(self):
+        """Cancel, and wait for the worker: it stops within a step."""
+        self.progress.cancel()
+        self.thread.join()
 
 
 class QuadMeshTaskPanel:
@@ -78,17 +119,24 @@ class QuadMeshTaskPanel:
         self.label = obj.Label
         self.doc = obj.Document
         self.created = created
-        self.worker = None  # the preview's thread while it runs
-        self.outcome = {}  # the preview's face names, and what the worker left: 'result' and 'geometry', or 'error'
-        self.started = 0.0
+        self.run = None  # the MeshRun running or last done
+        self.closing_after_run = False  # OK was pressed: store the run's outcome and close when it is done
         self.preview_root = None  # (scene graph, node) of the preview shown
+        self.preview_build = None  # the steps of a preview being built (preview_steps)
         self.hidden_object = False  # the object hidden to show the preview
+        self.faces, self.names, self.faces_error = [], [], None
+        try:
+            self.faces, self.names = objects.linked_faces(obj)
+        except Exception as error:  # shown; Preview and OK report it again
+            self.faces_error = error
         self.form = self.build_form()
         self.timer = QtCore.QTimer()
-        self.timer.setInterval(100)
+        self.timer.setInterval(int(POLL_SECONDS * 1000))
         self.timer.timeout.connect(self.poll)
         self.load_values()
         self.show_object_results()
+        if obj.Status == objects.NOT_MESHED:  # made by the Quad mesh command: mesh it now, off the GUI thread
+            self.start_run()
 
     # --- the widgets -------------------------------------------------------
 
@@ -101,6 +149,7 @@ class QuadMeshTaskPanel:
 
         parameters = QtGui.QGroupBox("Parameters")
         rows = QtGui.QFormLayout(parameters)
+        rows.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)  # fields under their labels in a narrow task view
         self.faces_label = QtGui.QLabel()
         self.faces_label.setObjectName("faces")
         self.faces_label.setWordWrap(True)
@@ -110,8 +159,14 @@ class QuadMeshTaskPanel:
         self.size.setObjectName("elementSize")
         self.size.setProperty("unit", "mm")
         self.size.setProperty("minimum", 0.0)
-        self.size.setToolTip("Target element size; 0: automatic (the faces' bounding box diagonal / 20)")
+        self.size.setToolTip("Target element size; 0: automatic, the faces' bounding box diagonal / 20 "
+                             "(shown below the field)")
+        self.size.valueChanged.connect(self.show_automatic_size)
         rows.addRow("Element size:", self.size)
+        self.automatic_size = QtGui.QLabel()
+        self.automatic_size.setObjectName("automaticSize")
+        self.automatic_size.setWordWrap(True)
+        rows.addRow("", self.automatic_size)
         self.merge = QtGui.QDoubleSpinBox()
         self.merge.setObjectName("mergeFactor")
         # The factors the core takes are 0.25 to 1; one step below them is
@@ -137,22 +192,35 @@ class QuadMeshTaskPanel:
         # length field's allows for huge numbers): let them shrink to it.
         for field in (self.size, self.merge, self.order):
             field.setMinimumWidth(60)
+        self.faces_label.setMinimumWidth(40)
         layout.addWidget(parameters)
 
-        preview = QtGui.QGroupBox("Preview")
-        column = QtGui.QVBoxLayout(preview)
+        mesh = QtGui.QGroupBox("Mesh")
+        column = QtGui.QVBoxLayout(mesh)
+        buttons = QtGui.QHBoxLayout()
         self.preview_button = QtGui.QPushButton("Preview")
         self.preview_button.setObjectName("preview")
         self.preview_button.setToolTip("Mesh with these values and show the mesh and the decomposition "
-                                       "in the 3D view; the object changes only on OK")
-        self.preview_button.clicked.connect(self.start_preview)
-        column.addWidget(self.preview_button)
+                                       "in the 3D view; the object changes only on OK, which keeps this mesh")
+        self.preview_button.clicked.connect(lambda: self.guarded(self.start_preview))
+        buttons.addWidget(self.preview_button)
+        self.stop_button = QtGui.QPushButton("Stop")
+        self.stop_button.setObjectName("stop")
+        self.stop_button.setToolTip("Stop the meshing running; the panel stays open")
+        self.stop_button.setEnabled(False)
+        self.stop_button.clicked.connect(lambda: self.guarded(self.stop_run))
+        buttons.addWidget(self.stop_button)
+        column.addLayout(buttons)
         self.progress = QtGui.QProgressBar()
         self.progress.setObjectName("progress")
-        self.progress.setRange(0, 0)  # busy: the core does not say how far it is
+        self.progress.setRange(0, 1000)
         self.progress.setTextVisible(False)
         self.progress.hide()
         column.addWidget(self.progress)
+        self.stage = QtGui.QLabel()
+        self.stage.setObjectName("stage")
+        self.stage.hide()
+        column.addWidget(self.stage)
         self.quality = QtGui.QLabel()
         self.quality.setObjectName("quality")
         self.quality.setWordWrap(True)
@@ -161,20 +229,46 @@ class QuadMeshTaskPanel:
         # summary's lines (and a wrapped one or two) from the start.
         self.quality.setMinimumHeight(QUALITY_LINES * self.quality.fontMetrics().lineSpacing())
         column.addWidget(self.quality)
-        layout.addWidget(preview)
+        self.colour = QtGui.QCheckBox("Colour by shape")
+        self.colour.setObjectName("colourByShape")
+        self.colour.setToolTip("Colour each element by its Verdict shape: red under 0.3 (poor), orange to "
+                               "yellow up to 0.6, green from 0.8 (good); in the preview and on the mesh object")
+        self.colour.setChecked(bool(getattr(self.obj.ViewObject, "ColourByShape", False)))
+        self.colour.toggled.connect(lambda on: self.guarded(self.colour_changed, on))
+        column.addWidget(self.colour)
+        # The messages: a list that scrolls, and wraps its lines to the
+        # panel's width rather than widening the panel.
+        self.messages = QtGui.QListWidget()
+        self.messages.setObjectName("messages")
+        self.messages.setWordWrap(True)
+        self.messages.setTextElideMode(QtCore.Qt.ElideNone)
+        self.messages.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.messages.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Fixed)
+        self.messages.setFixedHeight(MESSAGE_ROWS * self.messages.fontMetrics().lineSpacing())
+        self.messages.setToolTip("What the mesher did, grouped; the full notes are in the object's Notes")
+        column.addWidget(self.messages)
+        layout.addWidget(mesh)
         layout.addStretch()
         return form
 
-    def load_values(self):
+    def guarded(self, action, *arguments):
+        """Run a Qt slot's work: nothing may escape into FreeCAD."""
         try:
-            names = ", ".join(objects.linked_faces(self.obj)[1])
-        except Exception as error:  # shown; Preview and OK report it again
-            names = f"({error})"
-        self.faces_label.setText(names)
+            action(*arguments)
+        except Exception as error:
+            self.report_error(messages.failure_message(error, self.face_names()))
+
+    def load_values(self):
+        self.faces_label.setText(", ".join(self.names) if self.names else f"({self.faces_error})")
         self.size.setProperty("rawValue", self.obj.ElementSize.Value)
         self.merge.setValue(self.obj.MergeFactor if self.obj.MergeFactor >= 0.25 else NO_MERGING)
         self.order.setCurrentIndex(max(0, self.order.findText(self.obj.ElementOrder)))
         self.smooth.setChecked(self.obj.Smoothing)
+        self.show_automatic_size()
+
+    def show_automatic_size(self, *_):
+        automatic = self.faces and float(self.size.property("rawValue")) == 0.0
+        self.automatic_size.setText(f"Automatic ({meshing.automatic_size(self.faces):.4g} mm)" if automatic else "")
 
     def values(self):
         """The panel's values as the object's properties take them."""
@@ -185,10 +279,22 @@ class QuadMeshTaskPanel:
             "Smoothing": self.smooth.isChecked(),
         }
 
+    def object_values(self):
+        obj = self.obj
+        return {"ElementSize": obj.ElementSize.Value, "MergeFactor": obj.MergeFactor,
+                "ElementOrder": obj.ElementOrder, "Smoothing": obj.Smoothing}
+
+    def face_names(self):
+        return ", ".join(self.names) or self.label
+
     def show_object_results(self):
         obj = self.obj
         if obj.Status.startswith("ok"):
-            self.show_message("Current mesh:\n" + quality_text(self.object_quality(), "\n") + fallback_line(obj))
+            fallback = f"\nfallback: {obj.Status[len('ok (fallback: '):-1]}" if obj.Status.startswith("ok (") else ""
+            self.show_message("Current mesh:\n" + quality_text(self.object_quality(), "\n") + fallback)
+            self.show_notes(list(obj.Notes))
+        elif obj.Status == objects.NOT_MESHED:
+            self.show_message("")
         else:
             self.show_message(f"Current mesh: {obj.Status or 'not computed'}", error=bool(obj.Status))
 
@@ -196,111 +302,139 @@ class QuadMeshTaskPanel:
         self.quality.setStyleSheet("color: #c00000" if error else "")
         self.quality.setText(text)
 
+    def show_notes(self, notes):
+        self.messages.clear()
+        for message in messages.group_notes(notes):
+            item = QtGui.QListWidgetItem(("Warning: " if message.level == messages.WARNING else "") + message.text)
+            if message.level == messages.WARNING:
+                item.setForeground(QtGui.QBrush(QtGui.QColor(WARNING_COLOUR)))
+            self.messages.addItem(item)
+
     def report_error(self, message):
-        """In the panel and in the report view, naming the object (the
+        """In the panel and once in the report view, naming the object (the
         message names the face)."""
         self.show_message(message, error=True)
         FreeCAD.Console.PrintError(f"MedialMesh: {self.label}: {message}\n")
 
-    # --- preview ------------------------------------------------------------
+    def colour_changed(self, on):
+        self.obj.ViewObject.ColourByShape = on
+        if self.preview_root and self.run and self.run.result:
+            self.show_preview(self.run)
+
+    # --- meshing in the worker -----------------------------------------------
 
     def start_preview(self):
-        # A Qt slot: nothing may escape into FreeCAD.
-        try:
-            self.run_preview()
-        except Exception as error:
-            self.report_error(f"preview failed: {error!r}")
+        self.closing_after_run = False
+        self.start_run()
 
-    def run_preview(self):
-        if self.busy():
-            return
-        try:
-            faces, names = objects.linked_faces(self.obj)
-        except Exception as error:
-            self.report_error(str(error))
-            return
+    def start_run(self):
+        """Mesh the faces with the panel's values in the worker, unless a
+        run for them is going already; False when refused (said why)."""
+        if self.faces_error is not None:
+            self.report_error(messages.failure_message(self.faces_error, self.label))
+            return False
         values = self.values()
-        too_many = too_many_quads(faces, values["ElementSize"], ",".join(names))
+        if self.run is not None and self.run.running():
+            if self.run.values == values:
+                return True
+            self.run.stop()
+        too_many = too_many_quads(self.faces, values["ElementSize"], ", ".join(self.names))
         if too_many:
             self.report_error(too_many)
-            return
-        from .meshing import mesh_face
-
-        arguments = objects.mesh_arguments(values["ElementSize"], values["ElementOrder"], values["MergeFactor"],
-                                           values["Smoothing"])
-        arguments["name"] = names
-        outcome = {"names": ",".join(names)}
-
-        def work():
-            try:
-                result = mesh_face(faces if len(faces) > 1 else faces[0], **arguments)
-                outcome["geometry"] = preview_geometry(result)
-                outcome["result"] = result
-            except Exception as error:  # handed to the GUI thread
-                outcome["error"] = error
-
-        self.outcome = outcome
-        self.started = time.monotonic()
-        self.worker = threading.Thread(target=work, name="MedialMesh preview", daemon=True)
-        self.worker.start()
+            return False
+        self.run = MeshRun(self.faces, self.names, values)
         self.preview_button.setEnabled(False)
+        self.stop_button.setEnabled(True)
+        self.progress.setValue(0)
+        self.progress.show()
+        self.stage.show()
+        self.stage.setText("Starting")
         self.show_message("Meshing ...")
+        self.messages.clear()
         self.timer.start()
+        return True
 
-    def busy(self):
-        return self.worker is not None and self.worker.is_alive()
+    def stop_run(self):
+        self.closing_after_run = False
+        if self.run is not None and self.run.running():
+            self.run.stop()
+        self.poll()
 
     def poll(self):
         try:
-            self.check_worker()
+            self.follow_run()
         except Exception as error:
-            self.report_error(f"preview failed: {error!r}")
+            self.report_error(messages.failure_message(error, self.face_names()))
 
-    def check_worker(self):
-        elapsed = time.monotonic() - self.started
-        if self.busy():
-            if elapsed > SHOW_PROGRESS_AFTER:
-                self.progress.show()
-                self.show_message(f"Meshing ... {elapsed:.1f} s")
+    def follow_run(self):
+        run = self.run
+        if run is None or self.preview_build is not None:
+            return
+        if run.running():
+            self.progress.setValue(int(1000 * run.progress.fraction()))
+            self.stage.setText(f"{run.progress.text()} ({time.monotonic() - run.started:.1f} s)")
             return
         self.timer.stop()
-        self.worker = None
+        if run.error is None:  # drawn first, then shown as done
+            self.stage.setText("Drawing the preview")
+            self.show_preview(run, then=lambda: self.end_run(run))
+        else:
+            self.end_run(run)
+
+    def end_run(self, run):
+        """The run's outcome shown, the panel ready for another; stored and
+        closed if OK is waiting for it."""
         self.progress.hide()
+        self.stage.hide()
         self.preview_button.setEnabled(True)
-        if "error" in self.outcome:
-            error = self.outcome["error"]
-            message = str(error) if isinstance(error, ValueError) else f"internal error: {error!r}"
-            if self.outcome["names"] not in message:  # a few core messages do not name the face
-                message = f"{self.outcome['names']}: {message}"
-            self.report_error(message)
-            return
-        result = self.outcome["result"]
-        self.show_preview(self.outcome["geometry"])
-        text = "Preview:\n" + quality_text(result.quality, "\n")
-        if result.fallbacks:
-            text += "\nfallback: " + ", ".join(result.fallbacks)
-        if result.notes:
-            text += "\n" + "\n".join(result.notes)
-        self.show_message(text)
+        self.stop_button.setEnabled(False)
+        if run.error is not None:
+            self.report_error(messages.failure_message(run.error, run.names))
+            if isinstance(run.error, meshing.Cancelled):
+                self.run = None  # nothing to keep
+        else:
+            text = "Preview:\n" + quality_text(run.result.quality, "\n")
+            if run.result.fallbacks:
+                text += "\nfallback: " + ", ".join(run.result.fallbacks)
+            self.show_message(text)
+            self.show_notes(run.result.notes)
+        if self.closing_after_run:
+            self.closing_after_run = False
+            if self.run is not None:
+                self.finish()
 
-    def wait_for_worker(self):
-        """Let a running preview finish: the meshing cannot be stopped, and
-        FreeCAD must not build meshes in two threads at once."""
-        if self.worker is None:
-            return
-        QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
-        try:
-            self.worker.join()
-        finally:
-            QtGui.QApplication.restoreOverrideCursor()
-        self.timer.stop()
-        self.worker = None
+    # --- the preview ------------------------------------------------------------
 
-    def show_preview(self, geometry):
+    def show_preview(self, run, then=None):
+        """Draw the run's mesh in place of the object, its Coin node built a
+        step at a time between the GUI's events (a step of a million quads
+        takes some 0.15 s; the whole node, 0.5 s); then call `then`."""
         self.remove_preview()
-        view = FreeCADGui.getDocument(self.doc.Name).ActiveView
-        graph = view.getSceneGraph()
-        node = preview_node(geometry)
+        shapes = run.result.element_shape if self.colour.isChecked() else None
+        build = preview_steps(run.geometry, shapes)
+        self.preview_build = build
+
+        def step():
+            try:
+                if build is not self.preview_build:
+                    return  # replaced, or the panel closed
+                try:
+                    next(build)
+                except StopIteration as done:
+                    self.preview_build = None
+                    self.attach_preview(done.value)
+                    if then is not None:
+                        then()
+                    return
+                QtCore.QTimer.singleShot(0, step)
+            except Exception as error:  # a timer's slot: nothing may escape into FreeCAD
+                self.preview_build = None
+                self.report_error(messages.failure_message(error, self.face_names()))
+
+        step()
+
+    def attach_preview(self, node):
+        graph = FreeCADGui.getDocument(self.doc.Name).ActiveView.getSceneGraph()
         graph.addChild(node)
         self.preview_root = (graph, node)
         if not self.hidden_object and self.obj.ViewObject.Visibility:
@@ -308,14 +442,17 @@ class QuadMeshTaskPanel:
             self.hidden_object = True
 
     def remove_preview(self):
+        self.preview_build = None  # a preview being built is dropped
         if self.preview_root:
             graph, node = self.preview_root
             graph.removeChild(node)
             self.preview_root = None
 
     def clean_up(self):
-        """Take the preview out of the view and show the object again."""
-        self.wait_for_worker()
+        """Stop a run, take the preview out of the view and show the object again."""
+        self.timer.stop()
+        if self.run is not None and self.run.running():
+            self.run.stop()
         try:
             self.remove_preview()
         except Exception as error:  # the view is gone
@@ -330,32 +467,51 @@ class QuadMeshTaskPanel:
         return int(QtGui.QDialogButtonBox.Ok | QtGui.QDialogButtonBox.Cancel)
 
     def accept(self):
+        values = self.values()
+        done = self.run is not None and not self.run.running() and self.run.values == values
+        unchanged = values == self.object_values() and self.obj.Status != objects.NOT_MESHED
+        if done or (unchanged and (self.run is None or self.run.running())):
+            if self.run is not None and self.run.running():
+                self.run.stop()  # the object's own mesh is for these values
+                self.run = None
+            self.finish()
+            return True
+        # No mesh for these values yet: make it off the GUI thread, then store it and close.
+        if not self.start_run():
+            return False  # refused (too many quads, no faces): the panel stays, saying why
+        self.closing_after_run = True
+        self.stage.setText("Meshing; the panel closes and keeps the mesh when done")
+        return False
+
+    def finish(self):
+        """Store the last run's outcome (if any) and the values, close."""
         try:
-            faces, names = objects.linked_faces(self.obj)
-            too_many = too_many_quads(faces, self.values()["ElementSize"], ",".join(names))
-        except Exception:  # no faces: the object's recompute says why
-            too_many = None
-        if too_many:  # the panel stays open for a larger size
-            self.report_error(too_many)
-            return False
-        try:
+            run = self.run
             self.clean_up()
-            self.apply()
+            self.apply(run)
         except Exception as error:
             FreeCAD.Console.PrintError(f"MedialMesh: {self.label}: applying the values failed: {error!r}\n")
         self.close()
-        return True
 
-    def apply(self):
+    def apply(self, run):
         obj, doc = self.obj, self.doc
         if not self.created:
             doc.openTransaction("Edit quad mesh")
-        for name, value in self.values().items():
+        values = self.values() if run is None else run.values
+        for name, value in values.items():
             current = obj.ElementSize.Value if name == "ElementSize" else getattr(obj, name)
             if value != current:
                 setattr(obj, name, value)
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
         try:
+            if run is not None:
+                self.stage.setText("Handing the mesh to FreeCAD")
+                FreeCADGui.updateGui()
+                if run.error is not None:
+                    objects.store_failure(obj, messages.failure_message(run.error, run.names))
+                else:
+                    objects.store_mesh(obj, run.result, objects.mesh_key(obj, self.faces, run.values))
+                obj.purgeTouched()  # the mesh is for these values: no meshing again on recompute
             doc.recompute()
         finally:
             QtGui.QApplication.restoreOverrideCursor()
@@ -406,41 +562,55 @@ class QuadMeshTaskPanel:
 
 
 def preview_geometry(result):
-    """The preview as flat lists, ready for Coin: the mesh's node positions,
-    its elements as polygons (corner, mid-side node, next corner ...), its
-    element edges as index pairs, and the splits as polylines. Plain Python
-    work, done in the worker thread so that the GUI keeps running."""
-    femmesh = result.femmesh
-    positions = femmesh.Nodes
-    node_ids = sorted(positions)
-    index = {node_id: i for i, node_id in enumerate(node_ids)}
-    polygons, edges = [], set()
-    for face_id in femmesh.Faces:
-        element = [index[n] for n in femmesh.getElementNodes(face_id)]
-        corners, midsides = element[:4], element[4:]
-        loop = []
-        for c in range(4):
-            loop.append(corners[c])
-            if midsides:
-                loop.append(midsides[c])
-        polygons.extend(loop)
-        polygons.append(-1)
-        edges.update((min(a, b), max(a, b)) for a, b in zip(loop, loop[1:] + loop[:1]))
+    """The preview as flat arrays, ready for Coin: the mesh's node positions,
+    its elements as polygons (corner, mid-side node, next corner ..., -1),
+    its element outlines as closed polylines (-1 after each), and the
+    splits as polylines. Done with numpy in the worker thread, so that the
+    GUI keeps running."""
+    elements = result.elements
+    corners, midsides = elements[:, :4], elements[:, 4:]
+    if midsides.shape[1]:
+        loops = numpy.stack([corners, midsides], axis=2).reshape(len(elements), 8)
+    else:
+        loops = corners
+    polygons = numpy.hstack([loops, numpy.full((len(loops), 1), -1)]).ravel()
+    # Each element's outline closed on itself: a side between two elements
+    # is drawn twice, which costs less than finding it once. None past
+    # PREVIEW_EDGES_UP_TO elements: there they are finer than the pixels,
+    # and would only double the time the GUI spends drawing.
+    if len(loops) <= PREVIEW_EDGES_UP_TO:
+        edges = numpy.hstack([loops, loops[:, :1], numpy.full((len(loops), 1), -1)]).ravel()
+    else:
+        edges = numpy.zeros(0, dtype=numpy.int32)
     splits = [[(p.x, p.y, p.z) for p in edge.discretize(QuasiDeflection=1e-3 * max(edge.Length, 1e-9))]
               for split in result.splits for edge in split.Edges]
     return {
-        "points": [(p.x, p.y, p.z) for p in (positions[n] for n in node_ids)],
-        "polygons": polygons,
-        "edges": [i for a, b in sorted(edges) for i in (a, b, -1)],
+        # arrays: lists would copy into Coin faster, but making them holds the GIL
+        "points": result.nodes.astype(numpy.float32),
+        "polygons": polygons.astype(numpy.int32),
+        "edges": edges.astype(numpy.int32),
         "splits": splits,
     }
 
 
-def preview_node(geometry):
-    """A Coin node of the mesh (faces and element edges) and the splits. The
-    faces are pushed back in depth, as the mesh object's are (see
-    viewproviders.push_faces_back): the edges show on them and on the face
-    of a part they lie on."""
+def preview_node(geometry, shapes=None):
+    """A Coin node of the mesh (faces and element edges) and the splits;
+    with shapes (each element's Verdict shape), the faces coloured by them
+    as the mesh object colours its elements. The faces are pushed back in
+    depth, as the mesh object's are (see viewproviders.push_faces_back): the
+    edges show on them and on the face of a part they lie on."""
+    steps = preview_steps(geometry, shapes)
+    while True:
+        try:
+            next(steps)
+        except StopIteration as done:
+            return done.value
+
+
+def preview_steps(geometry, shapes=None):
+    """preview_node a step at a time: a generator that yields after each
+    large piece of the node (pivy copies an array into Coin value by value:
+    some 0.15 s for a million quads' points) and returns the node."""
     root = coin.SoSeparator()
     root.setName("MedialMeshPreview")
     unpickable = coin.SoPickStyle()
@@ -452,22 +622,34 @@ def preview_node(geometry):
     coordinates = coin.SoCoordinate3()
     coordinates.point.setValues(0, len(geometry["points"]), geometry["points"])
     root.addChild(coordinates)
+    yield
 
     faces = coin.SoSeparator()
     offset = coin.SoPolygonOffset()
     offset.factor = viewproviders.FACE_OFFSET
     offset.units = viewproviders.FACE_OFFSET
     faces.addChild(offset)
-    faces.addChild(base_colour(PREVIEW_FACE_COLOUR))
+    if shapes is None:
+        faces.addChild(base_colour(PREVIEW_FACE_COLOUR))
+    else:
+        colours = coin.SoBaseColor()
+        colours.rgb.setValues(0, len(shapes), viewproviders.shape_colours(shapes))
+        faces.addChild(colours)
+        yield
+        binding = coin.SoMaterialBinding()
+        binding.value = coin.SoMaterialBinding.PER_FACE
+        faces.addChild(binding)
     face_set = coin.SoIndexedFaceSet()
     face_set.coordIndex.setValues(0, len(geometry["polygons"]), geometry["polygons"])
     faces.addChild(face_set)
     root.addChild(faces)
+    yield
 
-    root.addChild(base_colour(PREVIEW_EDGE_COLOUR))
-    line_set = coin.SoIndexedLineSet()
-    line_set.coordIndex.setValues(0, len(geometry["edges"]), geometry["edges"])
-    root.addChild(line_set)
+    if len(geometry["edges"]):
+        root.addChild(base_colour(PREVIEW_EDGE_COLOUR))
+        line_set = coin.SoIndexedLineSet()
+        line_set.coordIndex.setValues(0, len(geometry["edges"]), geometry["edges"])
+        root.addChild(line_set)
 
     splits = geometry["splits"]
     if splits:  # drawn last: where they run along element edges, they show

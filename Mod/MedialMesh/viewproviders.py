@@ -150,6 +150,10 @@ class ViewProviderMedialQuadMesh:
     def attach(self, vobj):
         self.ViewObject = vobj
         self.Object = vobj.Object
+        if not hasattr(vobj, "ColourByShape"):  # new, or from a document of an older version
+            vobj.addProperty("App::PropertyBool", "ColourByShape", "Quality",
+                             "Colour each element by its Verdict shape: red under 0.3 (poor), orange to yellow up "
+                             "to 0.6, green from 0.8 (good)")
         self.panel = None  # the open task panel, if any
         # Set by the Quad mesh command just before it opens the panel on the
         # object it made: the panel then removes the object on Cancel.
@@ -208,16 +212,42 @@ class ViewProviderMedialQuadMesh:
         return True
 
     def updateData(self, obj, prop):
+        if prop != "FemMesh" or not obj.ViewObject:
+            return
         # FreeCAD builds its mesh nodes after attach; by the first mesh they are there.
-        if prop == "FemMesh" and not getattr(self, "faces_pushed_back", False) and obj.ViewObject:
+        if not getattr(self, "faces_pushed_back", False):
             try:
                 self.faces_pushed_back = push_faces_back(obj.ViewObject.RootNode)
             except Exception as error:  # drawing must never take FreeCAD down
                 FreeCAD.Console.PrintError(f"MedialMesh: {obj.Label}: cannot draw the mesh: {error!r}\n")
                 self.faces_pushed_back = True  # once is enough
+        if getattr(obj.ViewObject, "ColourByShape", False):
+            # After FreeCAD's own view has rebuilt its drawing of the new
+            # mesh, which comes after this call and would drop the colours.
+            from PySide import QtCore
+
+            vobj = obj.ViewObject
+            QtCore.QTimer.singleShot(0, lambda: self.colour_elements(vobj))
 
     def onChanged(self, vobj, prop):
-        pass
+        if prop == "ColourByShape" and getattr(self, "Object", None) is not None:
+            self.colour_elements(vobj)
+
+    def colour_elements(self, vobj):
+        """Each element coloured by its shape, or FreeCAD's one colour again.
+        FreeCAD 1.0 shows ElementColor only in its ColorMode 'ByElement'
+        (0.20 has no ColorMode, and shows it at once)."""
+        try:
+            on = vobj.ColourByShape and vobj.Object.FemMesh.FaceCount > 0
+            if on:
+                colours = shape_colours(element_shapes(vobj.Object)).tolist()
+                vobj.ElementColor = {i: tuple(c) for i, c in enumerate(colours, 1)}
+            else:
+                vobj.ElementColor = {}
+            if "ColorMode" in vobj.PropertiesList:
+                vobj.ColorMode = "ByElement" if on else "Overall"
+        except Exception as error:  # drawing must never take FreeCAD down
+            FreeCAD.Console.PrintError(f"MedialMesh: cannot colour the mesh: {error!r}\n")  # the object may be gone
 
     def __getstate__(self):
         return None
@@ -227,6 +257,33 @@ class ViewProviderMedialQuadMesh:
 
 
 FACE_OFFSET = 3.0  # the depth offset of the mesh faces, see push_faces_back
+# The colours of element shape (shape_colours): red at 0 through the poor
+# bar (0.3) to orange, yellow at 0.6, green from 0.8 (linear between).
+SHAPE_COLOURS = [(0.0, (0.85, 0.0, 0.0)), (0.3, (1.0, 0.45, 0.0)), (0.6, (1.0, 0.9, 0.2)), (0.8, (0.45, 0.8, 0.35)),
+                 (1.0, (0.3, 0.7, 0.3))]
+
+
+def shape_colours(shapes):
+    """The colour of each of an array of Verdict shapes (0 to 1), as an (M, 3) float32 array."""
+    import numpy
+
+    stops = [stop for stop, _ in SHAPE_COLOURS]
+    channels = [numpy.interp(shapes, stops, [colour[c] for _, colour in SHAPE_COLOURS]) for c in range(3)]
+    return numpy.stack(channels, axis=1).astype(numpy.float32)
+
+
+def element_shapes(obj):
+    """The Verdict shape of each element of the quad mesh object, in element
+    id order: as the mesher measured them when it made the mesh in this
+    session, else measured again from the FemMesh (a document reopened)."""
+    shapes = getattr(obj.Proxy, "element_shape", None)
+    femmesh = obj.FemMesh
+    if shapes is None or len(shapes) != femmesh.FaceCount:
+        from . import meshing
+
+        shapes = meshing.femmesh_shapes(femmesh)
+        obj.Proxy.element_shape = shapes
+    return shapes
 
 
 def push_faces_back(root):

@@ -31,6 +31,28 @@ def colour_count(image, rgb, tolerance=40):
     return count
 
 
+def says_why_it_cannot_use_a_selection(test, command_name):
+    """A command on one face at a time, grey with nothing selected; pressed
+    with a curved face or a whole solid it makes nothing and says why."""
+    command = FreeCADGui.Command.get(command_name)
+    FreeCADGui.Selection.clearSelection()
+    test.assertFalse(command.isActive())  # grey: the tooltip says what to select
+    test.assertIn("Select planar faces", command.getInfo()["toolTip"])
+    cylinder = test.doc.getObject("Cylinder")
+    before = len(test.doc.Objects)
+    status_bar = FreeCADGui.getMainWindow().statusBar()
+    for obj, subname, why in ((cylinder, "Face1", "Cylinder.Face1 is a curved face (cylinder)"),
+                              (cylinder, "", "Cylinder is a whole solid: pick one of its planar faces")):
+        test.select(obj, subname)
+        test.assertTrue(command.isActive())
+        FreeCADGui.runCommand(command_name)
+        FreeCADGui.updateGui()
+        test.assertEqual(len(test.doc.Objects), before)
+        test.assertIn(why, status_bar.currentMessage())
+    test.select(test.plate, "Face1")
+    test.assertTrue(command.isActive())
+
+
 class TestAnalyseCommand(unittest.TestCase):
 
     @classmethod
@@ -63,14 +85,8 @@ class TestAnalyseCommand(unittest.TestCase):
                  if m.title() == "MedialMesh"]
         self.assertIn("Analyse face", [a.text() for m in menus for a in m.actions()])
 
-    def test_enabled_only_for_planar_faces(self):
-        command = FreeCADGui.Command.get("MedialMesh_Analyse")
-        FreeCADGui.Selection.clearSelection()
-        self.assertFalse(command.isActive())
-        self.select(self.doc.getObject("Cylinder"), "Face1")  # the cylinder's side
-        self.assertFalse(command.isActive())
-        self.select(self.plate, "Face1")
-        self.assertTrue(command.isActive())
+    def test_says_why_it_cannot_use_a_selection(self):
+        says_why_it_cannot_use_a_selection(self, "MedialMesh_Analyse")
 
     def test_analyse_shows_the_overlay(self):
         self.select(self.plate, "Face1")

@@ -15,7 +15,7 @@ import Part
 from PySide2 import QtGui, QtWidgets
 
 from MedialMesh import decomposition
-from test_analyse_gui import PLACEMENT, colour_count
+from test_analyse_gui import PLACEMENT, colour_count, says_why_it_cannot_use_a_selection
 
 
 class TestDecomposeCommand(unittest.TestCase):
@@ -51,14 +51,8 @@ class TestDecomposeCommand(unittest.TestCase):
                  if m.title() == "MedialMesh"]
         self.assertIn("Decompose face", [a.text() for m in menus for a in m.actions()])
 
-    def test_enabled_only_for_planar_faces(self):
-        command = FreeCADGui.Command.get("MedialMesh_Decompose")
-        FreeCADGui.Selection.clearSelection()
-        self.assertFalse(command.isActive())
-        self.select(self.doc.getObject("Cylinder"), "Face1")  # the cylinder's side
-        self.assertFalse(command.isActive())
-        self.select(self.plate, "Face1")
-        self.assertTrue(command.isActive())
+    def test_says_why_it_cannot_use_a_selection(self):
+        says_why_it_cannot_use_a_selection(self, "MedialMesh_Decompose")
 
     def test_decompose_shows_the_splits(self):
         self.select(self.plate, "Face1")

@@ -7,8 +7,10 @@ Run by run_freecad_test.sh (see freecad_runner.py):
 """
 
 import os
+import subprocess
 import sys
 import tempfile
+import threading
 import time
 import unittest
 
@@ -19,7 +21,7 @@ import ObjectsFem
 import Part
 
 import MedialMesh
-from MedialMesh import analysis, meshing
+from MedialMesh import analysis, meshing, messages
 from test_analysis import PLACEMENT, plate_body, shared_face, top_face_name
 
 TOLERANCE = 1e-7
@@ -445,6 +447,161 @@ class TestMeshObject(unittest.TestCase):
         for face in faces:
             for node in on_axis:
                 self.assertLess(face.distToShape(Part.Vertex(node))[0], TOLERANCE)
+
+
+class TestProgressAndMessages(unittest.TestCase):
+    """What the task panel builds on: a run followed and stopped from
+    another thread, the notes grouped for people, one wording of a failure,
+    the shapes the view colours by, and the meshes Undo and Redo take back."""
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("ProgressAndMessages")
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def test_a_run_followed_and_cancelled_from_another_thread(self):
+        face = shared_face("plate_with_hole")
+        progress = meshing.Progress()
+        seen, outcome = [], {}
+
+        def work():
+            try:
+                outcome["result"] = meshing.mesh_face(face, size=0.01, progress=progress)
+            except MedialMesh.Cancelled as error:
+                outcome["error"] = error
+
+        worker = threading.Thread(target=work)
+        worker.start()
+        while worker.is_alive() and "Building the FEM mesh" not in progress.text():
+            seen.append((progress.text(), progress.fraction()))
+            time.sleep(0.005)
+        progress.cancel()
+        worker.join()
+        self.assertIn("error", outcome, "the run was not stopped")
+        self.assertTrue(progress.cancelled)
+        texts = [text for text, _ in seen]
+        known = ("Reading the faces", "Meshing: medial axis", "Meshing: decomposition", "Meshing: interval counts",
+                 "Meshing: blocks ", "Meshing: smoothing", "Meshing: quality", "Building the FEM mesh")
+        self.assertEqual([t for t in texts if not t.startswith(known)], [])
+        self.assertTrue(any(text.startswith("Meshing: blocks ") and " of " in text for text in texts), texts)
+        fractions = [f for _, f in seen]
+        self.assertEqual(fractions, sorted(fractions))  # the bar only moves on
+        self.assertLess(fractions[-1], 1.0)
+        # the same run to its end: the bar full, the same mesh as without a Progress
+        progress = meshing.Progress()
+        result = meshing.mesh_face(face, size=0.1, progress=progress)
+        self.assertEqual(progress.fraction(), 1.0)
+        self.assertEqual(result.quality["quads"], meshing.mesh_face(face, size=0.1).quality["quads"])
+
+    def test_notes_grouped_for_people(self):
+        face = Part.read(os.path.join(os.environ["MEDIALMESH_SHARED"], "realcad", "faces",
+                                      "trimesh_featuretype_50.brep")).Faces[0]
+        notes = meshing.mesh_face(face).notes
+        grouped = messages.group_notes(notes)
+        self.assertEqual(sum(m.count for m in grouped), len(notes))  # every note in one message
+        self.assertLess(len(grouped), len(notes))
+        fixed = sum(1 for note in notes if note.startswith("fixed a k = "))
+        self.assertIn(f"{fixed} irregular nodes placed at block corners", grouped[0].text)
+        for message in grouped:
+            self.assertNotIn("k = ", message.text)  # no developer words
+        # a fallback is a warning, put first; an unknown note is kept as written, counted
+        grouped = messages.group_notes(["fixed a k = 1 singularity: no permitted split",
+                                        "meshed with merging 0.5, as a fallback: with merging 0.75 the result did "
+                                        "not pass its check (mesh: an element is inverted)",
+                                        "something new", "something new"])
+        self.assertEqual([m.level for m in grouped], [messages.WARNING, messages.INFO, messages.INFO])
+        self.assertTrue(grouped[0].text.startswith("A fallback made this mesh"))
+        self.assertEqual(grouped[2].text, "something new (2 times)")
+
+    def test_a_failure_worded_once_the_same_everywhere(self):
+        check = _medialmesh.SelfCheckError("Plate.Face1: self-check failed: mesh: an element is inverted")
+        text = messages.failure_message(check, "Plate.Face1")
+        self.assertTrue(text.startswith("Plate.Face1: MedialMesh could not mesh this: its own check of the result "
+                                        "failed (mesh: an element is inverted)"), text)
+        self.assertIn("defect of MedialMesh, not of your model", text)
+        self.assertIn("Try another element size or merge factor", text)
+        self.assertIn("File > Export, save it as a .brep", text)
+        self.assertEqual(text.count("Plate.Face1"), 1)
+        cylinder = Part.makeCylinder(1, 2)
+        side = next(f for f in cylinder.Faces if isinstance(f.Surface, Part.Cylinder))
+        with self.assertRaises(MedialMesh.InputError) as raised:
+            meshing.mesh_face(side, name="Tube.Face1")
+        self.assertEqual(messages.failure_message(raised.exception, "Tube.Face1"), str(raised.exception))
+        self.assertEqual(messages.failure_message(MedialMesh.Cancelled("meshing cancelled"), "Tube.Face1"),
+                         "Tube.Face1: meshing cancelled")
+
+    def test_element_shapes_read_back_from_the_femmesh(self):
+        face = shared_face("bracket")
+        face.Placement = PLACEMENT  # turned out of the XY plane
+        for order in (1, 2):
+            result = meshing.mesh_face(face, order=order)
+            shapes = meshing.femmesh_shapes(result.femmesh)
+            self.assertEqual(len(shapes), result.quality["quads"])
+            self.assertLess(abs(shapes - result.element_shape).max(), 1e-9)
+            self.assertAlmostEqual(shapes.min(), result.quality["min_shape"], places=9)
+
+    def test_a_saved_document_reopens_in_a_fresh_freecad_with_the_addon_installed(self):
+        # As tools/install.sh installs it: the repository linked into the
+        # user's Mod folder. FreeCAD (Debian's 0.20.2+dfsg1-4+deb12u1 and
+        # 1.0 with the CVE-2026-34789 fix) restores an object's Python proxy
+        # only from a module under an installed addon's folder, as named in
+        # FreeCAD.__ModDirs__: through the link, not the folder it points to.
+        repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("plate_with_hole")
+        self.doc.recompute()
+        MedialMesh.make_mesh_object(self.doc, plate, "Face1")
+        with tempfile.TemporaryDirectory() as home:
+            path = os.path.join(home, "saved.FCStd")
+            self.doc.saveAs(path)
+            mod = os.path.join(home, ".local", "share", "FreeCAD", "Mod")
+            os.makedirs(mod)
+            os.symlink(repo, os.path.join(mod, "MedialMesh"))
+            script = (f"import FreeCAD; doc = FreeCAD.openDocument({path!r}); "
+                      "print('proxy:', type(doc.getObject('MedialQuadMesh').Proxy).__name__)")
+            env = dict(os.environ, HOME=home,
+                       PYTHONPATH=os.path.join(os.environ["MEDIALMESH_BUILD_DIR"], "lib"))
+            env.pop("XDG_DATA_HOME", None)
+            run = subprocess.run(["freecadcmd", "-c", script], env=env, stdin=subprocess.DEVNULL,
+                                 capture_output=True, text=True, timeout=300)
+        self.assertIn("proxy: MedialQuadMesh", run.stdout, run.stdout + run.stderr)
+        self.assertNotIn("blocked import", run.stdout + run.stderr)
+
+    def test_undo_and_redo_take_the_meshes_back(self):
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = shared_face("plate_with_hole")
+        self.doc.UndoMode = 1
+        self.doc.recompute()
+        self.doc.openTransaction("make")
+        mesh_obj = MedialMesh.make_mesh_object(self.doc, plate, "Face1")
+        self.doc.commitTransaction()
+        coarse = mesh_obj.QuadCount
+        self.doc.openTransaction("size")
+        mesh_obj.ElementSize = 0.2
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        fine = mesh_obj.QuadCount
+        self.assertGreater(fine, coarse)
+        calls = []
+        original = meshing.mesh_face
+        meshing.mesh_face = lambda *a, **k: calls.append(1) or original(*a, **k)
+        try:
+            self.doc.undo()
+            self.assertEqual(mesh_obj.QuadCount, coarse)
+            self.doc.recompute()  # FreeCAD's Undo does not restore the FemMesh: the object takes its mesh back
+            self.assertEqual(mesh_obj.FemMesh.FaceCount, coarse)
+            self.doc.redo()
+            self.doc.recompute()
+            self.assertEqual((mesh_obj.ElementSize.Value, mesh_obj.FemMesh.FaceCount), (0.2, fine))
+        finally:
+            meshing.mesh_face = original
+        self.assertEqual(calls, [])
+        plate.Placement.Base = FreeCAD.Vector(1, 0, 0)  # the face moved: its meshes are for another face
+        self.doc.recompute()
+        self.assertEqual(mesh_obj.FemMesh.FaceCount, fine)
+        self.assertLess(max_distance_off(plate.Shape.Faces[0], mesh_obj.FemMesh), TOLERANCE)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -40,10 +40,25 @@ def process_events_until(condition, timeout):
 
 def panel_widget(name):
     """A widget of the open Quad mesh task panel, found as a user sees it."""
-    form = FreeCADGui.getMainWindow().findChild(QtWidgets.QWidget, "MedialMeshQuadMeshPanel")
+    # the one shown: the forms of panels closed before may not be deleted yet
+    forms = FreeCADGui.getMainWindow().findChildren(QtWidgets.QWidget, "MedialMeshQuadMeshPanel")
+    shown = [f for f in forms if f.isVisible()]
+    form = (shown or forms or [None])[-1]
     if form is None:
         raise AssertionError("the Quad mesh task panel is not shown")
     return form if name is None else form.findChild(QtWidgets.QWidget, name)
+
+
+def wait_for_run(timeout=300):
+    """Let the open panel's meshing run to its end."""
+    done = process_events_until(lambda: panel_widget("stop") is None or not panel_widget("stop").isEnabled(),
+                                timeout)
+    FreeCADGui.updateGui()
+    return done
+
+
+def wait_for_panel_to_close(timeout=300):
+    return process_events_until(lambda: not FreeCADGui.Control.activeDialog(), timeout)
 
 
 def press(button):
@@ -117,6 +132,7 @@ class TestQuadMeshCommand(unittest.TestCase):
         before = set(o.Name for o in self.doc.Objects)
         FreeCADGui.runCommand("MedialMesh_QuadMesh")
         FreeCADGui.updateGui()
+        self.assertTrue(wait_for_run(), "the panel's first meshing did not finish")
         made = [self.doc.getObject(name) for name in set(o.Name for o in self.doc.Objects) - before]
         meshes = [o for o in made if getattr(o, "Type", "") == objects.QUAD_MESH_TYPE]
         self.assertEqual(len(meshes), 1)
@@ -142,8 +158,7 @@ class TestQuadMeshCommand(unittest.TestCase):
 
     def preview(self):
         panel_widget("preview").click()
-        self.assertTrue(process_events_until(lambda: panel_widget("preview").isEnabled(), 120),
-                        "the preview did not finish")
+        self.assertTrue(wait_for_run(120), "the preview did not finish")
         return panel_widget("quality").text()
 
     def test_in_toolbar_and_menu(self):
@@ -155,12 +170,23 @@ class TestQuadMeshCommand(unittest.TestCase):
                  if m.title() == "MedialMesh"]
         self.assertIn("Quad mesh", [a.text() for m in menus for a in m.actions()])
 
-    def test_enabled_only_for_planar_faces(self):
+    def test_a_selection_it_cannot_use_is_named_with_what_it_needs(self):
         command = FreeCADGui.Command.get("MedialMesh_QuadMesh")
         FreeCADGui.Selection.clearSelection()
-        self.assertFalse(command.isActive())
-        self.select((self.cylinder, "Face1"))  # the cylinder's side
-        self.assertFalse(command.isActive())
+        self.assertFalse(command.isActive())  # grey: its tooltip says what to select
+        self.assertIn("Select planar faces", command.getInfo()["toolTip"])
+        status_bar = FreeCADGui.getMainWindow().statusBar()
+        before = len(self.doc.Objects)
+        for pick, why in (((self.cylinder, "Face1"), "Cylinder.Face1 is a curved face (cylinder): planar faces only"),
+                          ((self.plate, "Edge1"), "Plate.Edge1 is an edge, not a face"),
+                          ((self.analysis, ""), "Analysis has no faces")):
+            self.select(pick)
+            self.assertTrue(command.isActive())  # pressed, it says why it cannot
+            FreeCADGui.runCommand("MedialMesh_QuadMesh")
+            FreeCADGui.updateGui()
+            self.assertEqual(len(self.doc.Objects), before)
+            self.assertIn(why, status_bar.currentMessage())
+            self.assertIn(f"MedialMesh: Quad mesh: {why}. To use it, select planar faces", report_view_text())
         self.select((self.plate, "Face1"))
         self.assertTrue(command.isActive())
 
@@ -178,13 +204,14 @@ class TestQuadMeshCommand(unittest.TestCase):
         undo_before = self.doc.UndoCount
         mesh = self.run_quad_mesh((self.plate, "Face1"))
         self.assertTrue(FreeCADGui.Control.activeDialog())
-        self.assertEqual(mesh.Status, "ok")
+        # The panel meshed it at once, off the GUI thread: shown, not stored before OK.
+        self.assertEqual(mesh.Status, objects.NOT_MESHED)
         self.assertIn(mesh, self.analysis.Group)
         self.assertEqual(mesh.ViewObject.Proxy.__class__.__name__, "ViewProviderMedialQuadMesh")
         self.assertEqual(mesh.ViewObject.claimChildren(), [mesh.Sketch])
-        self.assertTrue(panel_widget("quality").text().startswith("Current mesh:\n"))
-        automatic = mesh.QuadCount
-        self.assertEqual(mesh.FemMesh.QuadrangleCount, automatic)
+        text = panel_widget("quality").text()
+        self.assertTrue(text.startswith("Preview:\n"), text)
+        automatic = int(text.split()[1])
 
         # Half the automatic size (the diagonal / 20): some four times the quads.
         # (The field keeps FreeCAD's two decimals.)
@@ -194,7 +221,7 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertTrue(text.startswith("Preview:\n"), text)
         previewed = int(text.split()[1])
         self.assertGreater(previewed, 2 * automatic)
-        self.assertEqual(mesh.QuadCount, automatic)  # the preview leaves the object alone
+        self.assertEqual(mesh.QuadCount, 0)  # the preview leaves the object alone
         self.assertFalse(mesh.ViewObject.Visibility)  # it stands in for the object meanwhile
         self.cylinder.ViewObject.Visibility = False
         self.look_at_plate(view)
@@ -243,7 +270,8 @@ class TestQuadMeshCommand(unittest.TestCase):
         self.assertTrue(FreeCADGui.Control.activeDialog())
         order = panel_widget("elementOrder")
         order.setCurrentIndex(order.findText("2nd"))
-        press(QtWidgets.QDialogButtonBox.Ok)
+        press(QtWidgets.QDialogButtonBox.Ok)  # no mesh for these values yet: OK meshes, then closes
+        self.assertTrue(wait_for_panel_to_close())
         self.assertEqual(mesh.ElementOrder, "2nd")
         self.assertEqual(mesh.QuadCount, previewed)
         self.assertGreater(mesh.FemMesh.NodeCount, 2 * mesh.QuadCount)
@@ -278,9 +306,9 @@ class TestQuadMeshCommand(unittest.TestCase):
     def test_faces_not_planar_are_named_and_left_out(self):
         mesh = self.run_quad_mesh((self.plate, "Face1"), (self.cylinder, "Face1"))
         self.assertEqual(mesh.Source, [(self.plate, ("Face1",))])
-        self.assertEqual(mesh.Status, "ok")
-        self.assertIn("Cylinder.Face1: the face is not planar", report_view_text())
+        self.assertIn("Cylinder.Face1 is a curved face (cylinder): planar faces only", report_view_text())
         press(QtWidgets.QDialogButtonBox.Ok)
+        self.assertEqual(mesh.Status, "ok")
 
     def test_faces_of_several_objects_go_into_one_mesh(self):
         top = self.cylinder.Shape.Faces[1]  # the cylinder's top: planar
@@ -295,13 +323,18 @@ class TestQuadMeshCommand(unittest.TestCase):
         sheet = self.doc.addObject("Part::Plane", "Sheet")
         sheet.Placement.Base = FreeCAD.Vector(0, 30, 0)
         self.doc.recompute()
-        command = FreeCADGui.Command.get("MedialMesh_QuadMesh")
-        self.select((self.cylinder, ""))  # a solid picked whole: which face is meant?
-        self.assertFalse(command.isActive())
         mesh = self.run_quad_mesh((sheet, ""))
         self.assertEqual(mesh.Source, [(sheet, ("Face1",))])
-        self.assertEqual(mesh.Status, "ok")
         press(QtWidgets.QDialogButtonBox.Ok)
+        self.assertEqual(mesh.Status, "ok")
+
+    def test_a_solid_picked_whole_gives_its_planar_faces(self):
+        mesh = self.run_quad_mesh((self.cylinder, ""))
+        self.assertEqual(mesh.Source, [(self.cylinder, ("Face2", "Face3"))])  # its top and bottom
+        self.assertIn("Cylinder: 1 curved face left out, 2 planar faces meshed", report_view_text())
+        press(QtWidgets.QDialogButtonBox.Ok)
+        self.assertEqual(mesh.Status, "ok")
+        self.assertEqual(mesh.Label, "QuadMesh (Cylinder Face2 + 1 face)")
 
     def test_deleting_the_mesh_deletes_its_sketch(self):
         mesh = objects.make_mesh_object(self.doc, self.plate, "Face1", analysis=self.analysis)
@@ -376,6 +409,7 @@ class TestQuadMeshCommand(unittest.TestCase):
         merge.setValue(0.1)  # below 0.25: the field offers "no merging" instead
         self.assertEqual(merge.text(), "no merging")
         press(QtWidgets.QDialogButtonBox.Ok)
+        self.assertTrue(wait_for_panel_to_close())
         self.assertEqual(mesh.MergeFactor, 0.0)
         self.assertEqual(mesh.Status, "ok")
 
