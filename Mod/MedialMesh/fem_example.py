@@ -46,7 +46,9 @@ def setup_tension_analysis(doc, source, fixed_edge, loaded_edge, force, face="Fa
     shape_face = source.Shape.getElement(face)
     direction = outward_direction(shape_face, source.Shape.Edges[_edge_index(loaded_edge)])
     analysis = ObjectsFem.makeAnalysis(doc, name)
-    solver = ObjectsFem.makeSolverCalculixCcxTools(doc, name + "CalculiX")
+    # FreeCAD 1.0 renamed it makeSolverCalculiXCcxTools (ObjectsFem.py), with no alias.
+    make_solver = getattr(ObjectsFem, "makeSolverCalculiXCcxTools", None) or ObjectsFem.makeSolverCalculixCcxTools
+    solver = make_solver(doc, name + "CalculiX")
     solver.AnalysisType = "static"
     solver.GeometricalNonlinearity = "linear"
     solver.WorkingDir = ""
@@ -70,7 +72,8 @@ def setup_tension_analysis(doc, source, fixed_edge, loaded_edge, force, face="Fa
         line.ViewObject.Visibility = False
     load = ObjectsFem.makeConstraintForce(doc, name + "Force")
     load.References = [(source, loaded_edge)]
-    load.Force = force
+    # A PropertyForce in FreeCAD 1.0, where a bare number would be millinewtons; a float of newtons in 0.20.
+    load.Force = f"{force} N" if load.getTypeIdOfProperty("Force") == "App::PropertyForce" else force
     load.Direction = (line, ["Edge1"])
     load.Reversed = False
     analysis.addObject(load)
@@ -84,7 +87,10 @@ def add_gmsh_mesh(doc, analysis, source, size, refine_edges=(), refined_size=Non
     from femmesh.gmshtools import GmshTools
 
     mesh = ObjectsFem.makeMeshGmsh(doc, name)
-    mesh.Part = source
+    if "Shape" in mesh.PropertiesList:  # FreeCAD 1.0 links the geometry as Shape, 0.20 as Part
+        mesh.Shape = source
+    else:
+        mesh.Part = source
     mesh.ElementDimension = "2D"
     mesh.ElementOrder = "2nd" if order == 2 else "1st"
     mesh.SecondOrderLinear = False  # mid-side nodes on the curves

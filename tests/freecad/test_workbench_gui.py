@@ -31,7 +31,7 @@ class TestPackageMetadata(unittest.TestCase):
         self.assertTrue(os.path.isfile(os.path.join(REPO, self.metadata.Icon)))
 
     def test_dependencies_listed(self):
-        needed = {"FEM", "Part", "Sketcher", "numpy"}
+        needed = {"fem", "part", "sketcher", "numpy"}
         self.assertEqual(needed, needed & {d["package"] for d in self.metadata.Depend})
 
     def test_workbench_content(self):
