@@ -3,8 +3,19 @@
 # Build MedialMesh and make its workbench appear in FreeCAD for the current
 # user: the repository root is linked into FreeCAD's user Mod folder as
 # MedialMesh. Safe to run again.
+#
+#   tools/install.sh [--replace]
+#
+# When the link is there already and points to another clone, it is left
+# alone unless the user says so: asked at a terminal, or --replace.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+replace=0
+case "${1:-}" in
+    --replace) replace=1 ;;
+    "") ;;
+    *) echo "usage: tools/install.sh [--replace]" >&2; exit 2 ;;
+esac
 
 echo "== building: tools/build.sh"
 "$root/tools/build.sh"
@@ -27,6 +38,15 @@ elif [[ -e $link && ! -L $link ]]; then
     exit 1
 else
     if [[ -L $link ]]; then
+        echo "install.sh: $link links to another MedialMesh: $(readlink "$link")"
+        if [[ $replace == 0 && -t 0 ]]; then
+            read -r -p "Make it link to $root instead? [y/N] " answer
+            [[ $answer == [yY]* ]] && replace=1
+        fi
+        if [[ $replace == 0 ]]; then
+            echo "install.sh: left as it is; to replace it, run: tools/install.sh --replace" >&2
+            exit 1
+        fi
         echo "== replacing $link -> $(readlink "$link")"
     fi
     ln -sfn "$root" "$link"
