@@ -470,10 +470,11 @@ class QuadMeshTaskPanel:
         values = self.values()
         done = self.run is not None and not self.run.running() and self.run.values == values
         unchanged = values == self.object_values() and self.obj.Status != objects.NOT_MESHED
-        if done or (unchanged and (self.run is None or self.run.running())):
+        if not done and unchanged:  # the object's own mesh is for these values
             if self.run is not None and self.run.running():
-                self.run.stop()  # the object's own mesh is for these values
-                self.run = None
+                self.run.stop()
+            self.run = None
+        if done or unchanged:
             self.finish()
             return True
         # No mesh for these values yet: make it off the GUI thread, then store it and close.
@@ -505,7 +506,7 @@ class QuadMeshTaskPanel:
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
         try:
             if run is not None:
-                self.stage.setText("Handing the mesh to FreeCAD")
+                self.show_message("Handing the mesh to FreeCAD, which draws it (seconds for a million quads)")
                 FreeCADGui.updateGui()
                 if run.error is not None:
                     objects.store_failure(obj, messages.failure_message(run.error, run.names))
