@@ -177,8 +177,34 @@ bool fit_circle(const std::vector<Vec2>& pts, Vec2& center, double& radius) {
   return true;
 }
 
+// The circle through a and b (centre on their bisector) nearest the points
+// in the algebraic sense: |p - c|^2 - |a - c|^2 is linear in the centre's
+// place t along the bisector, so t is a 1-D least-squares answer. False for
+// a chord of no length or points all on the chord's line.
+bool fit_circle_through(Vec2 a, Vec2 b, const std::vector<Vec2>& pts, Vec2& center, double& radius) {
+  const double chord = distance(a, b);
+  if (!(chord > 0.0)) return false;
+  const Vec2 mid = 0.5 * (b - a);  // relative to a, for conditioning
+  const Vec2 normal = perp((b - a) / chord);
+  double gh = 0.0, hh = 0.0;
+  for (const Vec2& q : pts) {
+    const Vec2 p = q - a;
+    const double g = dot(p, p) - 2.0 * dot(p, mid), h = 2.0 * dot(p, normal);
+    gh += g * h, hh += h * h;
+  }
+  if (!(hh > 0.0)) return false;
+  const Vec2 c = mid + (gh / hh) * normal;
+  center = a + c;
+  radius = norm(c);
+  return std::isfinite(radius);
+}
+
 // A B-spline whose points all lie on a straight line or a circle within the
 // tolerance is replaced by that exact line or arc (STEP often stores arcs so).
+// The arc is the circle through the edge's own vertices that fits its points
+// best: a circle fitted freely to a B-spline that only approximates one (an
+// arc interpolated through points) misses the vertices by a hair, and the
+// medial axis then takes the joins for kinks.
 void recognise_simple_curve(BoundaryEdge& edge, double size) {
   if (curve_type(edge.curve) != CurveType::BSpline) return;
   const std::vector<Vec2> pts = dense_points(edge, 8);
@@ -215,7 +241,20 @@ void recognise_simple_curve(BoundaryEdge& edge, double size) {
     }
   }
   if (std::abs(sweep) < 1e-9) return;
-  const Vec2 r0 = pts[0] - center;
+  // Through the vertices, when that circle holds the points as well (not for
+  // a whole circle, whose vertices are one point).
+  Vec2 through_center;
+  double through_radius = 0.0;
+  if (fit_circle_through(edge.start, edge.end, pts, through_center, through_radius) &&
+      std::all_of(pts.begin(), pts.end(),
+                  [&](Vec2 p) { return std::abs(distance(through_center, p) - through_radius) <= arc_tolerance; })) {
+    center = through_center, radius = through_radius;
+    const double turn = signed_angle(edge.start - center, edge.end - center);  // in (-pi, pi]
+    // The turn the points make, to the nearest whole turn of the vertices'.
+    sweep = turn + 2.0 * kPi * std::round((sweep - turn) / (2.0 * kPi));
+    if (std::abs(sweep) < 1e-9) return;
+  }
+  const Vec2 r0 = edge.start - center;
   edge.curve = CircleCurve{center, radius, std::atan2(r0.y, r0.x), sweep > 0 ? 1 : -1};
   edge.t_start = 0.0;
   edge.t_end = std::abs(sweep);
