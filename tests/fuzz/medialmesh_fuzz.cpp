@@ -3,11 +3,14 @@
 //   medialmesh_fuzz --seed S --count N --out DIR [--time-limit SECONDS] [--families F,G...] [--from I]
 //                   [--size F]
 //
-// Builds N random OCC faces of seven families (filleted polygons with holes,
+// Builds N random OCC faces of eleven families (filleted polygons with holes,
 // plates with notches and slots, closed B-spline outlines, thin strips with
 // tiny edges, faces bounded by elliptic arcs, NACA sections and high-lift
 // arrangements in a far field, turbine cascade passages: tests/occ/
-// aerofoil_faces.hpp), each placed anywhere in 3-D at
+// aerofoil_faces.hpp; circles and fillets written as several B-spline arcs,
+// faces converted whole to NURBS, cambered slat sections with a concave side
+// and a cusp, faces through OCC's STEP writer and reader), each placed
+// anywhere in 3-D at
 // a scale of 1e-3 to 1e4, and runs each in a child process of its own, under
 // a time limit: BREP text -> boundary model -> medial axis -> mesh flow ->
 // decomposition -> the face cut into block faces by OCC -> the block mesh
@@ -24,9 +27,10 @@
 // those families among the N (each the face a full run makes), to compare
 // one stage's families before and after a change. --from I skips the
 // faces before the I-th (counted from 0 over all families): face
-// <family>_<seed>_<n> is the I-th for I = 7 (n div 5) + n mod 5 in the first
-// five families and I = 7 n + 5 (aerofoils) or 7 n + 6 (cascades), so
-// --from I --count I+1 remakes that one face.
+// <family>_<seed>_<n> is the I-th for I = 11 (n div 5) + n mod 5 in the first
+// five families and I = 11 n + f for the later ones (f = 5 aerofoils, 6
+// cascades, 7 arcs, 8 nurbs, 9 slats, 10 step), so --from I --count I+1
+// remakes that one face.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,6 +38,7 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepFilletAPI_MakeFillet2d.hxx>
@@ -44,6 +49,7 @@
 #include <GC_MakeSegment.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomAPI_Interpolate.hxx>
+#include <GeomConvert.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Ellipse.hxx>
@@ -51,6 +57,8 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_HArray1OfPnt.hxx>
@@ -332,11 +340,145 @@ TopoDS_Face cascade(Rng& rng) {
   return mm::test::cascade_face(c, 1.0);
 }
 
+// Points of the circle (x, y, r) from angle a0 to a1, n of them, ends exact.
+std::vector<gp_Pnt> arc_points(double x, double y, double r, double a0, double a1, int n) {
+  std::vector<gp_Pnt> points;
+  for (int i = 0; i < n; ++i) {
+    const double a = a0 + (a1 - a0) * i / (n - 1);
+    points.push_back(point(x + r * std::cos(a), y + r * std::sin(a)));
+  }
+  return points;
+}
+
+// An arc of the circle (x, y, r) from a0 to a1 as one B-spline: rational
+// (an exact conversion, as CAD writes it) or interpolated through points
+// (as some exporters write it, a circle within their tolerance).
+TopoDS_Edge spline_arc(double x, double y, double r, double a0, double a1, bool rational) {
+  if (rational) {
+    Handle(Geom_Circle) circle = new Geom_Circle(gp_Ax2(point(x, y), gp::DZ()), r);
+    return BRepBuilderAPI_MakeEdge(GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(circle, a0, a1))).Edge();
+  }
+  const std::vector<gp_Pnt> points = arc_points(x, y, r, a0, a1, 9 + static_cast<int>(8 * (a1 - a0)));
+  Handle(TColgp_HArray1OfPnt) array = new TColgp_HArray1OfPnt(1, static_cast<int>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) array->SetValue(static_cast<int>(i) + 1, points[i]);
+  GeomAPI_Interpolate interpolate(array, false, 1e-12);
+  interpolate.Perform();
+  if (!interpolate.IsDone()) throw Standard_Failure("interpolation failed");
+  return BRepBuilderAPI_MakeEdge(interpolate.Curve()).Edge();
+}
+
+// A whole circle as 2 to 4 B-spline arcs from a random angle on.
+TopoDS_Wire circle_in_pieces(Rng& rng, double x, double y, double r) {
+  const int pieces = integer(rng, 2, 4);
+  const bool rational = uniform(rng, 0, 1) < 0.5;
+  const double start = uniform(rng, 0, 2 * M_PI);
+  BRepBuilderAPI_MakeWire wire;
+  for (int k = 0; k < pieces; ++k)
+    wire.Add(spline_arc(x, y, r, start + 2 * M_PI * k / pieces, start + 2 * M_PI * (k + 1) / pieces, rational));
+  return wire.Wire();
+}
+
+// Circles and fillets written as several B-spline arcs, as several STEP
+// exporters write them: a disc, a washer, a plate with holes, a rectangle
+// with rounded corners (each a B-spline quarter circle).
+TopoDS_Face arcs_in_pieces(Rng& rng) {
+  const int kind = integer(rng, 0, 3);
+  if (kind <= 1) {
+    const TopoDS_Face disc = BRepBuilderAPI_MakeFace(circle_in_pieces(rng, 0, 0, 1)).Face();
+    if (kind == 0) return disc;
+    const double r = uniform(rng, 0.2, 0.8);
+    return with_holes(disc, {circle_in_pieces(rng, uniform(rng, -0.1, 0.1) * (1 - r), 0, r)});
+  }
+  const double width = uniform(rng, 1.5, 3), height = uniform(rng, 0.8, 1.5);
+  if (kind == 2) {
+    std::vector<TopoDS_Wire> holes;
+    const int count = integer(rng, 1, 3);
+    for (int h = 0; h < count; ++h)
+      holes.push_back(circle_in_pieces(rng, width * (h + 0.5) / count, height / 2,
+                                       uniform(rng, 0.1, 0.35) * std::min(width / count, height)));
+    return with_holes(
+        BRepBuilderAPI_MakeFace(polygon_wire({point(0, 0), point(width, 0), point(width, height), point(0, height)}))
+            .Face(),
+        holes);
+  }
+  const double r = uniform(rng, 0.05, 0.45) * height;
+  const bool rational = uniform(rng, 0, 1) < 0.5;
+  const std::array<gp_Pnt, 4> centres{point(width - r, r), point(width - r, height - r), point(r, height - r),
+                                      point(r, r)};
+  BRepBuilderAPI_MakeWire wire;
+  for (int c = 0; c < 4; ++c) {
+    const double a0 = -M_PI / 2 + c * M_PI / 2;
+    const gp_Pnt& o = centres[c];
+    wire.Add(spline_arc(o.X(), o.Y(), r, a0, a0 + M_PI / 2, rational));
+    const gp_Pnt& next = centres[(c + 1) % 4];
+    const double a1 = a0 + M_PI / 2;
+    wire.Add(BRepBuilderAPI_MakeEdge(point(o.X() + r * std::cos(a1), o.Y() + r * std::sin(a1)),
+                                     point(next.X() + r * std::cos(a1), next.Y() + r * std::sin(a1)))
+                 .Edge());
+  }
+  return BRepBuilderAPI_MakeFace(wire.Wire()).Face();
+}
+
+// A face of another family converted whole to NURBS, as some exporters
+// write every face: a planar B-spline surface with B-spline edges.
+TopoDS_Face nurbs(Rng& rng) {
+  const int kind = integer(rng, 0, 3);
+  const TopoDS_Face face = kind == 0   ? filleted_polygon(rng)
+                           : kind == 1 ? notched_plate(rng)
+                           : kind == 2 ? elliptic(rng)
+                                       : arcs_in_pieces(rng);
+  return TopoDS::Face(BRepBuilderAPI_NurbsConvert(face, true).Shape());
+}
+
+// A cambered section alone, as the end face of a slat or flap: camber 4 to
+// 9 % (a concave lower side), thickness 4 to 12 % and a sharp trailing edge
+// (a cusp of some 4 to 15 degrees), or a blunt one.
+TopoDS_Face slat(Rng& rng) {
+  mm::test::AerofoilSection section;
+  const int thickness = integer(rng, 4, 12);
+  section.digits = std::to_string(integer(rng, 4, 9)) + std::to_string(integer(rng, 2, 5)) +
+                   (thickness < 10 ? "0" : "") + std::to_string(thickness);
+  section.blunt = uniform(rng, 0, 1) < 0.2;
+  return mm::test::section_face(section, 1.0);
+}
+
+// A face of another family written to STEP by OCC's writer and read back
+// by its reader, as a user's file comes.
+TopoDS_Face step_round_trip(Rng& rng) {
+  const int kind = integer(rng, 0, 4);
+  const TopoDS_Face face = kind == 0   ? filleted_polygon(rng)
+                           : kind == 1 ? notched_plate(rng)
+                           : kind == 2 ? bspline_outline(rng)
+                           : kind == 3 ? elliptic(rng)
+                                       : arcs_in_pieces(rng);
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() /
+      ("medialmesh_fuzz_" + std::to_string(getpid()) + "_" + std::to_string(integer(rng, 0, 1 << 30)) + ".step");
+  STEPControl_Writer writer;
+  if (writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone || writer.Write(path.c_str()) != IFSelect_RetDone)
+    throw Standard_Failure("STEP writing failed");
+  STEPControl_Reader reader;
+  const bool read = reader.ReadFile(path.c_str()) == IFSelect_RetDone && reader.TransferRoots() > 0;
+  std::filesystem::remove(path);
+  if (!read) throw Standard_Failure("STEP reading failed");
+  TopExp_Explorer faces(reader.OneShape(), TopAbs_FACE);
+  if (!faces.More()) throw Standard_Failure("no face read back from STEP");
+  return TopoDS::Face(faces.Current());
+}
+
 // New families go at the end, so that the faces of the old ones keep their
 // numbers and seeds (see generate).
-const std::vector<std::pair<std::string, TopoDS_Face (*)(Rng&)>> kFamilies = {
-    {"filleted", filleted_polygon}, {"plate", notched_plate}, {"bspline", bspline_outline}, {"strip", thin_strip},
-    {"elliptic", elliptic},         {"aerofoil", aerofoil},   {"cascade", cascade}};
+const std::vector<std::pair<std::string, TopoDS_Face (*)(Rng&)>> kFamilies = {{"filleted", filleted_polygon},
+                                                                              {"plate", notched_plate},
+                                                                              {"bspline", bspline_outline},
+                                                                              {"strip", thin_strip},
+                                                                              {"elliptic", elliptic},
+                                                                              {"aerofoil", aerofoil},
+                                                                              {"cascade", cascade},
+                                                                              {"arcs", arcs_in_pieces},
+                                                                              {"nurbs", nurbs},
+                                                                              {"slat", slat},
+                                                                              {"step", step_round_trip}};
 // The families there were when the fuzzer first ran 10 000 faces.
 constexpr std::size_t kFirstFamilies = 5;
 
@@ -370,12 +512,13 @@ struct Generated {
   TopoDS_Face face;
 };
 
-// Face i of a run is of family i mod 7. A face of the first five families
-// keeps the number (and so the random numbers) it had when they were the
-// only five: in each round of 7 faces, the 5 old ones number on from 5 per
-// round, so --count 2800 makes the faces --count 2000 made before, plus 800
-// aerofoil and cascade faces; those number 0, 1, 2 ... within their family
-// and draw from a stream of their own.
+// Face i of a run is of family i mod 11 (the number of families). A face of
+// the first five families keeps the number (and so the random numbers) it
+// had when they were the only five: in each round of 11 faces, the 5 old
+// ones number on from 5 per round; the later families' faces number 0, 1,
+// 2 ... within their family and draw from a stream of their own. So a face's
+// name names the same face whatever families were added after it, though a
+// run of N faces holds fewer of each as families are added.
 struct Numbered {
   std::size_t family;
   std::uint64_t number;

@@ -184,6 +184,10 @@ double blade_thickness(const Cascade& c, double s) {
 
 }  // namespace
 
+TopoDS_Face section_face(const AerofoilSection& section, double scale) {
+  return face_with_holes(section_wire(section, scale), {});
+}
+
 TopoDS_Face far_field_face(const std::vector<AerofoilSection>& sections, double scale) {
   std::vector<TopoDS_Wire> holes;
   for (const AerofoilSection& s : sections) holes.push_back(section_wire(s, scale));

@@ -25,6 +25,10 @@ struct AerofoilSection {
   double angle = 0.0;
 };
 
+// The section alone: the end face of a wing, slat or flap. Throws
+// std::invalid_argument for a designation it does not know.
+TopoDS_Face section_face(const AerofoilSection& section, double scale);
+
 // Sections as holes in a far-field rectangle 10 chords wide and 4 high
 // (x from -4.5 to 5.5, y from -2 to 2). Throws std::invalid_argument for a
 // designation it does not know.
