@@ -348,30 +348,6 @@ class MedialQuadMesh(MedialObject):
                                                                            obj.MergeFactor, obj.Smoothing))
         store_mesh(obj, result, key)
 
-    def onChanged(self, obj, prop):
-        # FreeCAD's Undo and Redo restore the parameters and the Results but
-        # not the FemMesh: the mesh drawn would not be the one the values
-        # say. Recomputed once the Undo is done, the object takes the mesh
-        # back from its recent ones (or meshes again).
-        if prop not in MESH_PARAMETERS or not getattr(obj.Document, "Transacting", False):
-            return
-        if FreeCAD.GuiUp and not getattr(self, "follow_undo_pending", False):
-            from PySide import QtCore
-
-            self.follow_undo_pending = True
-            QtCore.QTimer.singleShot(0, lambda: self.follow_undo(obj.Document.Name, obj.Name))
-
-    def follow_undo(self, doc_name, name):
-        self.follow_undo_pending = False
-        try:
-            doc = FreeCAD.getDocument(doc_name)
-            obj = doc.getObject(name)
-            if obj is not None and "Touched" in obj.State:
-                obj.recompute()
-                obj.purgeTouched()  # the mesh is the values' again
-        except Exception as error:  # a timer's slot: nothing may escape into FreeCAD
-            FreeCAD.Console.PrintError(f"MedialMesh: {name}: cannot follow the Undo: {error!r}\n")
-
 
 # The quad mesh's parameters: a change of any makes another mesh.
 MESH_PARAMETERS = ("ElementSize", "MergeFactor", "ElementOrder", "Smoothing")

@@ -212,6 +212,8 @@ class ViewProviderMedialQuadMesh:
         return True
 
     def updateData(self, obj, prop):
+        if prop in objects.MESH_PARAMETERS and getattr(obj.Document, "Transacting", False):
+            self.follow_undo(obj)
         if prop != "FemMesh" or not obj.ViewObject:
             return
         # FreeCAD builds its mesh nodes after attach; by the first mesh they are there.
@@ -228,6 +230,30 @@ class ViewProviderMedialQuadMesh:
 
             vobj = obj.ViewObject
             QtCore.QTimer.singleShot(0, lambda: self.colour_elements(vobj))
+
+    def follow_undo(self, obj):
+        """FreeCAD's Undo and Redo restore the parameters and the Results but
+        not the FemMesh: the mesh drawn would not be the one the values say.
+        Recomputed once the Undo is done, the object takes the mesh back from
+        its recent ones (objects.store_mesh), or meshes again."""
+        if getattr(self, "follow_undo_pending", False):
+            return  # one recompute for all the values one Undo restores
+        self.follow_undo_pending = True
+        doc_name, name = obj.Document.Name, obj.Name
+
+        def recompute():
+            self.follow_undo_pending = False
+            try:
+                undone = FreeCAD.getDocument(doc_name).getObject(name)
+                if undone is not None and "Touched" in undone.State:
+                    undone.recompute()
+                    undone.purgeTouched()  # the mesh is the values' again
+            except Exception as error:  # a timer's slot: nothing may escape into FreeCAD
+                FreeCAD.Console.PrintError(f"MedialMesh: {name}: cannot follow the Undo: {error!r}\n")
+
+        from PySide import QtCore
+
+        QtCore.QTimer.singleShot(0, recompute)
 
     def onChanged(self, vobj, prop):
         if prop == "ColourByShape" and getattr(self, "Object", None) is not None:
