@@ -266,8 +266,8 @@ mm::PipelineOptions mesh_options(const Options& o, double diagonal) {
   options.meshing.size = o.size ? *o.size : 0.05 * diagonal;
   options.meshing.order = o.order;
   options.meshing.smooth = o.smooth;
-  options.merge = !o.no_merge;
-  if (o.merge) options.tolerance = *o.merge;
+  options.decomposition.merge = !o.no_merge;
+  if (o.merge) options.decomposition.tolerance = *o.merge;
   return options;
 }
 

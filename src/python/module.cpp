@@ -159,8 +159,8 @@ mm::PipelineOptions pipeline_options(double size, int order, std::optional<doubl
   options.meshing.size = size;
   options.meshing.order = order;
   options.meshing.smooth = smooth;
-  options.merge = merge.has_value() || merge_size.has_value();
-  options.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
+  options.decomposition.merge = merge.has_value() || merge_size.has_value();
+  options.decomposition.tolerance = {merge.value_or(0.75), merge_size.value_or(0.0)};
   return options;
 }
 

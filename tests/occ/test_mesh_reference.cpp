@@ -252,7 +252,7 @@ TEST(MeshReference, KeyedGearsMeshAsOneRing) {
     EXPECT_TRUE(m.fallbacks.empty()) << name << ": " << fallback_names(m.fallbacks);
     PipelineOptions split;
     split.meshing.size = size;
-    split.split_concave_corners = true;
+    split.decomposition.split_concave_corners = true;
     const MeshedFace s = mesh_face(face, split);
     EXPECT_TRUE(test::mesh_problems(face, s.blocks.mesh, size).empty()) << name;
     EXPECT_GT(s.quality.min_shape(), 0.1) << name;

@@ -48,37 +48,37 @@ void add_stage(StageSeconds& stages, const std::string& name, double seconds) {
 // typing with a side far off its direction that the lattice survives.
 std::vector<PipelineOptions> fallbacks(const PipelineOptions& options) {
   std::vector<PipelineOptions> list;
-  if (options.orthogonal_joins) {
+  if (options.decomposition.orthogonal_joins) {
     PipelineOptions unjoined = options;
-    unjoined.orthogonal_joins = false;
+    unjoined.decomposition.orthogonal_joins = false;
     list.push_back(unjoined);
   }
-  if (options.submap_corners_follow_turning) {
+  if (options.decomposition.submap_corners_follow_turning) {
     PipelineOptions by_corners = options;
-    by_corners.submap_corners_follow_turning = false;
+    by_corners.decomposition.submap_corners_follow_turning = false;
     list.push_back(by_corners);
   }
   PipelineOptions less = options;
-  for (int step = 0; options.merge && step < 2; ++step) {
-    if (options.tolerance.mesh_size > 0.0) {
-      less.tolerance.mesh_size *= 0.5;
-    } else if (less.tolerance.radius_factor > 0.5) {
-      less.tolerance.radius_factor = 0.5;
-    } else if (less.tolerance.radius_factor > 0.25) {
-      less.tolerance.radius_factor = 0.25;
+  for (int step = 0; options.decomposition.merge && step < 2; ++step) {
+    if (options.decomposition.tolerance.mesh_size > 0.0) {
+      less.decomposition.tolerance.mesh_size *= 0.5;
+    } else if (less.decomposition.tolerance.radius_factor > 0.5) {
+      less.decomposition.tolerance.radius_factor = 0.5;
+    } else if (less.decomposition.tolerance.radius_factor > 0.25) {
+      less.decomposition.tolerance.radius_factor = 0.25;
     } else {
       break;
     }
     list.push_back(less);
   }
-  less.merge = false;
-  if (options.merge) list.push_back(less);
-  if (options.split_concave_corners) return list;
+  less.decomposition.merge = false;
+  if (options.decomposition.merge) list.push_back(less);
+  if (options.decomposition.split_concave_corners) return list;
   PipelineOptions split = options;
-  split.split_concave_corners = true;
+  split.decomposition.split_concave_corners = true;
   list.push_back(split);
-  if (options.merge) {
-    split.merge = false;
+  if (options.decomposition.merge) {
+    split.decomposition.merge = false;
     list.push_back(split);
   }
   return list;
@@ -86,38 +86,38 @@ std::vector<PipelineOptions> fallbacks(const PipelineOptions& options) {
 
 std::string settings_text(const PipelineOptions& options) {
   std::ostringstream text;
-  if (!options.merge) {
+  if (!options.decomposition.merge) {
     text << "no merging";
-  } else if (options.tolerance.mesh_size > 0.0) {
-    text << "merging within " << options.tolerance.mesh_size;
+  } else if (options.decomposition.tolerance.mesh_size > 0.0) {
+    text << "merging within " << options.decomposition.tolerance.mesh_size;
   } else {
-    text << "merging factor " << options.tolerance.radius_factor;
+    text << "merging factor " << options.decomposition.tolerance.radius_factor;
   }
-  if (options.split_concave_corners) text << " and splits at every concave corner";
-  if (!options.submap_corners_follow_turning) text << " and submapped corners by the corner rule alone";
-  if (!options.orthogonal_joins) text << " and no orthogonal joins";
-  if (options.whole_face) text << " and the whole face as one block";
-  if (options.frame_wrapped_holes) text << " and the holes a block runs round framed";
+  if (options.decomposition.split_concave_corners) text << " and splits at every concave corner";
+  if (!options.decomposition.submap_corners_follow_turning) text << " and submapped corners by the corner rule alone";
+  if (!options.decomposition.orthogonal_joins) text << " and no orthogonal joins";
+  if (options.decomposition.whole_face) text << " and the whole face as one block";
+  if (options.decomposition.frame_wrapped_holes) text << " and the holes a block runs round framed";
   return text.str();
 }
 
 // The fallbacks that `used` took against the settings `asked` for.
 std::vector<Fallback> option_fallbacks(const PipelineOptions& asked, const PipelineOptions& used) {
   std::vector<Fallback> list;
-  if (asked.orthogonal_joins && !used.orthogonal_joins) list.push_back(Fallback::NoOrthogonalJoins);
-  if (asked.submap_corners_follow_turning && !used.submap_corners_follow_turning)
+  if (asked.decomposition.orthogonal_joins && !used.decomposition.orthogonal_joins) list.push_back(Fallback::NoOrthogonalJoins);
+  if (asked.decomposition.submap_corners_follow_turning && !used.decomposition.submap_corners_follow_turning)
     list.push_back(Fallback::SubmapCornerRule);
-  const bool by_size = used.tolerance.mesh_size > 0.0;
-  if (asked.merge && (!used.merge || (by_size && used.tolerance.mesh_size < asked.tolerance.mesh_size) ||
-                      (!by_size && used.tolerance.radius_factor < asked.tolerance.radius_factor)))
+  const bool by_size = used.decomposition.tolerance.mesh_size > 0.0;
+  if (asked.decomposition.merge && (!used.decomposition.merge || (by_size && used.decomposition.tolerance.mesh_size < asked.decomposition.tolerance.mesh_size) ||
+                      (!by_size && used.decomposition.tolerance.radius_factor < asked.decomposition.tolerance.radius_factor)))
     list.push_back(Fallback::LessMerging);
-  if (!asked.split_concave_corners && used.split_concave_corners) list.push_back(Fallback::ConcaveCornerSplits);
+  if (!asked.decomposition.split_concave_corners && used.decomposition.split_concave_corners) list.push_back(Fallback::ConcaveCornerSplits);
   if (!asked.meshing.wide_untangling && used.meshing.wide_untangling) list.push_back(Fallback::WideUntangling);
   if (!asked.meshing.regrid_wide_folds && used.meshing.regrid_wide_folds) list.push_back(Fallback::WinslowGrid);
-  if (!asked.whole_face && used.whole_face) list.push_back(Fallback::WholeFace);
-  if (used.merge && by_size && (!asked.merge || used.tolerance.mesh_size > asked.tolerance.mesh_size))
+  if (!asked.decomposition.whole_face && used.decomposition.whole_face) list.push_back(Fallback::WholeFace);
+  if (used.decomposition.merge && by_size && (!asked.decomposition.merge || used.decomposition.tolerance.mesh_size > asked.decomposition.tolerance.mesh_size))
     list.push_back(Fallback::CoarseRetry);
-  if (!asked.frame_wrapped_holes && used.frame_wrapped_holes) list.push_back(Fallback::FramedHoles);
+  if (!asked.decomposition.frame_wrapped_holes && used.decomposition.frame_wrapped_holes) list.push_back(Fallback::FramedHoles);
   return list;
 }
 
@@ -152,15 +152,7 @@ FaceFlow flow_of_face(const FaceModel& face, StageSeconds& stages) {
 
 Decomposition decompose_flow(const FaceFlow& f, const PipelineOptions& options, StageSeconds& stages) {
   const auto t = Clock::now();
-  DecompositionOptions decomposition;
-  decomposition.merge = options.merge;
-  decomposition.tolerance = options.tolerance;
-  decomposition.split_concave_corners = options.split_concave_corners;
-  decomposition.submap_corners_follow_turning = options.submap_corners_follow_turning;
-  decomposition.orthogonal_joins = options.orthogonal_joins;
-  decomposition.whole_face = options.whole_face;
-  decomposition.frame_wrapped_holes = options.frame_wrapped_holes;
-  Decomposition result = decompose(f.face, f.axis, f.flow, decomposition);
+  Decomposition result = decompose(f.face, f.axis, f.flow, options.decomposition);
   add_stage(stages, "decomposition", seconds_since(t));
   return result;
 }
@@ -171,15 +163,15 @@ Decomposition decompose_flow(const FaceFlow& f, const PipelineOptions& options, 
 // that merging makes. Two settings alike in this decompose alike.
 using DecompositionKey = std::tuple<bool, bool, bool, bool, std::vector<std::vector<std::vector<int>>>>;
 DecompositionKey decomposition_key(const std::vector<const FaceFlow*>& flows, const PipelineOptions& options) {
-  DecompositionKey key{options.split_concave_corners,
-                       options.submap_corners_follow_turning,
-                       options.orthogonal_joins,
-                       options.frame_wrapped_holes,
+  DecompositionKey key{options.decomposition.split_concave_corners,
+                       options.decomposition.submap_corners_follow_turning,
+                       options.decomposition.orthogonal_joins,
+                       options.decomposition.frame_wrapped_holes,
                        {}};
   for (const FaceFlow* f : flows) {
     auto& groups = std::get<4>(key).emplace_back();
-    if (!options.merge) continue;
-    for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.tolerance))
+    if (!options.decomposition.merge) continue;
+    for (const SingularityGroup& g : group_singularities(f->flow.singularities, options.decomposition.tolerance))
       if (g.members.size() > 1) groups.push_back(g.members);
   }
   return key;
@@ -243,7 +235,7 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
                     "untangling reaching further"))
       return note;
     PipelineOptions whole = options;
-    whole.whole_face = true;
+    whole.decomposition.whole_face = true;
     if (last_resort(whole, "the whole face as one block")) return note;
     add_stage(stages, "failed_attempts", seconds_since(start));
     throw;
@@ -260,10 +252,10 @@ std::string with_fallbacks(const PipelineOptions& options, const std::vector<con
 std::optional<PipelineOptions> coarse_retry_options(const PipelineOptions& options,
                                                     const std::vector<const FaceFlow*>& flows) {
   PipelineOptions merged = options;
-  merged.merge = true;
-  merged.tolerance.mesh_size = std::numeric_limits<double>::infinity();
+  merged.decomposition.merge = true;
+  merged.decomposition.tolerance.mesh_size = std::numeric_limits<double>::infinity();
   for (const FaceFlow* f : flows)
-    merged.tolerance.mesh_size = std::min(merged.tolerance.mesh_size, 0.05 * f->face.size);
+    merged.decomposition.tolerance.mesh_size = std::min(merged.decomposition.tolerance.mesh_size, 0.05 * f->face.size);
   if (decomposition_key(flows, merged) == decomposition_key(flows, options)) return std::nullopt;
   return merged;
 }
@@ -337,11 +329,11 @@ constexpr double kPoorMesh = 0.5;
 template <typename Meshed, typename Make, typename Worst, typename Wrapped, typename BlockSeconds>
 void remesh_if_poor(PipelineOptions& used, Meshed& meshed, StageSeconds& passed, std::string& note,
                     StageSeconds& stages, Make make, Worst worst, Wrapped wrapped, BlockSeconds block_seconds) {
-  if (used.frame_wrapped_holes || used.split_concave_corners || !wrapped(meshed)) return;
+  if (used.decomposition.frame_wrapped_holes || used.decomposition.split_concave_corners || !wrapped(meshed)) return;
   const double before = worst(meshed);
   if (before >= kPoorMesh) return;
   PipelineOptions framed = used;
-  framed.frame_wrapped_holes = true;
+  framed.decomposition.frame_wrapped_holes = true;
   const auto t = Clock::now();
   try {
     StageSeconds attempt;

@@ -12,13 +12,9 @@ namespace mm {
 
 struct PipelineOptions {
   MeshingOptions meshing;  // its progress is told every stage, and stops the run when cancelled
-  bool merge = true;
-  MergeTolerance tolerance;                   // factor 0.75 of the medial radius unless told otherwise
-  bool split_concave_corners = false;         // DecompositionOptions::split_concave_corners
-  bool submap_corners_follow_turning = true;  // DecompositionOptions::submap_corners_follow_turning
-  bool orthogonal_joins = true;               // DecompositionOptions::orthogonal_joins
-  bool whole_face = false;                    // DecompositionOptions::whole_face
-  bool frame_wrapped_holes = false;           // DecompositionOptions::frame_wrapped_holes
+  // As decompose takes them: merging by a factor 0.75 of the medial radius
+  // unless told otherwise; the fallbacks change the rest.
+  DecompositionOptions decomposition;
 };
 
 // What made a result when the way asked for did not pass its checks (or,
