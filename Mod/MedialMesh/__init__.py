@@ -125,18 +125,19 @@ def mesh_face(face_or_faces, size=None, order=1, merge=0.75, smooth=True, name=N
 
 
 def make_mesh_object(doc, obj, subnames, size=None, order=1, merge=0.75, smooth=True, analysis=None,
-                     name="MedialQuadMesh"):
+                     name="MedialQuadMesh", compute=True):
     """Create, compute and return the parametric quad mesh of faces
     `subnames` ('Face3' or ['Face1', 'Face2']) of document object `obj` (or,
     with subnames None, of the (object, 'FaceN') pairs `obj`): a
     Fem::FemMeshObjectPython with a Sketch of the splits, put into `analysis`
     (or the active FEM analysis, or the document's only one), that recomputes
     when a face or a parameter (ElementSize, MergeFactor, ElementOrder,
-    Smoothing) changes. size, order, merge, smooth: as for mesh_face."""
+    Smoothing) changes. size, order, merge, smooth: as for mesh_face.
+    compute=False leaves it unmeshed, for the task panel to mesh."""
     from .objects import make_mesh_object as make
 
     return make(doc, obj, subnames, size=size, order=order, merge=merge, smooth=smooth, analysis=analysis,
-                name=name)
+                name=name, compute=compute)
 
 
 def to_3d(frame, x, y):

@@ -15,6 +15,7 @@ import FreeCADGui
 import Part
 
 from . import objects
+from .recording import doc_ref, made_by, obj_ref
 from .viewproviders import ICON_FOLDER
 
 STATUS_SECONDS = 15  # how long a message stays in the status bar
@@ -140,8 +141,11 @@ class FaceCommand(SelectionCommand):
     def run_on(self, faces):
         doc = FreeCAD.ActiveDocument
         doc.openTransaction(self.name)
-        made = [self.make(doc, obj, subname) for obj, subname, _ in faces]
-        doc.commitTransaction()
+        try:
+            made = [made_by(doc, f"MedialMesh.{self.make_function}({doc_ref(doc)}, {obj_ref(obj)}, {subname!r})",
+                            self.type_name) for obj, subname, _ in faces]
+        finally:
+            doc.commitTransaction()
         for obj in made:
             if obj.Status.startswith("ok"):
                 FreeCAD.Console.PrintMessage(f"MedialMesh: {obj.Label}: {self.summary(obj)}\n")
@@ -162,8 +166,8 @@ class CommandAnalyse(FaceCommand):
             "StatusTip": "Analyse face: select one or more planar faces in the 3D view, then press",
         }
 
-    def make(self, doc, obj, subname):
-        return objects.make_analysis_object(doc, obj, subname)
+    make_function = "make_analysis_object"
+    type_name = objects.TYPE
 
     def summary(self, obj):
         return (f"{len(obj.SingularityK)} singularities, "
@@ -185,8 +189,8 @@ class CommandDecompose(FaceCommand):
             "StatusTip": "Decompose face: select one or more planar faces in the 3D view, then press",
         }
 
-    def make(self, doc, obj, subname):
-        return objects.make_decomposition_object(doc, obj, subname)
+    make_function = "make_decomposition_object"
+    type_name = objects.DECOMPOSITION_TYPE
 
     def summary(self, obj):
         return (f"{obj.SplitCount} splits, {obj.BlockCount} blocks ({obj.PolygonBlocks} polygon, "
@@ -224,12 +228,14 @@ class CommandQuadMesh(SelectionCommand):
         analysis = FemGui.getActiveAnalysis()
         if analysis is not None and analysis.Document != doc:
             analysis = None
-        pairs = [(obj, subname) for obj, subname, _ in faces]
+        pairs = ", ".join(f"({obj_ref(obj)}, {subname!r})" for obj, subname, _ in faces)
+        target = f"{obj_ref(analysis)}" if analysis is not None else "None"
         # The task panel ends this transaction: OK commits it, Cancel aborts
         # it and so takes the new object back (see taskpanels).
         doc.openTransaction(self.name)
         try:
-            mesh = objects.make_mesh_object(doc, pairs, None, analysis=analysis, compute=False)
+            mesh = made_by(doc, f"MedialMesh.make_mesh_object({doc_ref(doc)}, [{pairs}], None, analysis={target}, "
+                           "compute=False)", objects.QUAD_MESH_TYPE)
         except Exception:
             doc.abortTransaction()
             raise

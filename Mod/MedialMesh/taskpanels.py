@@ -37,7 +37,7 @@ import numpy
 from pivy import coin
 from PySide import QtCore, QtGui
 
-from . import decomposition, meshing, messages, objects, viewproviders
+from . import decomposition, meshing, messages, objects, recording, viewproviders
 
 PREVIEW_FACE_COLOUR = (0.82, 0.88, 1.0)
 PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
@@ -502,7 +502,7 @@ class QuadMeshTaskPanel:
         for name, value in values.items():
             current = obj.ElementSize.Value if name == "ElementSize" else getattr(obj, name)
             if value != current:
-                setattr(obj, name, value)
+                recording.recorded(f"{recording.obj_ref(obj)}.{name} = {value!r}")
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
         try:
             if run is not None:
@@ -513,7 +513,8 @@ class QuadMeshTaskPanel:
                 else:
                     objects.store_mesh(obj, run.result, objects.mesh_key(obj, self.faces, run.values))
                 obj.purgeTouched()  # the mesh is for these values: no meshing again on recompute
-            doc.recompute()
+            # Recorded for a macro, which meshes there; here the mesh is stored already.
+            recording.recorded(f"{recording.doc_ref(doc)}.recompute()")
         finally:
             QtGui.QApplication.restoreOverrideCursor()
             doc.commitTransaction()

@@ -172,6 +172,23 @@ class TestQuadMeshPanel(unittest.TestCase):
             self.assertEqual(mesh.Status, "ok")
             self.assertEqual(drawn_faces(mesh), mesh.QuadCount)
 
+    def test_what_it_does_is_recorded_as_python(self):
+        # As FreeCAD's own commands: the lines go to the Python console and
+        # into a macro being recorded (FreeCADGui.doCommand).
+        mesh = self.command(self.plate)
+        press(QtWidgets.QDialogButtonBox.Ok)
+        self.edit(mesh)
+        panel_widget("elementSize").setProperty("rawValue", 0.3)
+        press(QtWidgets.QDialogButtonBox.Ok)
+        self.assertTrue(wait_for_panel_to_close())
+        FreeCADGui.updateGui()
+        (console,) = [w for w in FreeCADGui.getMainWindow().findChildren(QtWidgets.QPlainTextEdit)
+                      if w.objectName() == "Python console"]
+        text = console.toPlainText()
+        self.assertIn(f"MedialMesh.make_mesh_object(App.getDocument('{self.doc.Name}'), "
+                      f"[(App.getDocument('{self.doc.Name}').getObject('Plate'), 'Face1')]", text)
+        self.assertIn(f"App.getDocument('{self.doc.Name}').getObject('{mesh.Name}').ElementSize = 0.3", text)
+
     def test_stop_and_cancel_while_meshing(self):
         mesh = objects.make_mesh_object(self.doc, self.plate, "Face1", analysis=self.analysis)
         before = (mesh.QuadCount, mesh.ElementSize.Value, mesh.Status)
