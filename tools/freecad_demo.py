@@ -42,7 +42,12 @@ def quad_mesh_command(doc, part):
     panel meshes it), press OK in the task panel once the panel has meshed it;
     save a picture of the mesh; return the mesh object."""
     import FreeCADGui
-    from PySide2 import QtCore, QtWidgets
+    from PySide import QtCore, QtGui  # FreeCAD's shim: PySide2 in 0.20, 2 or 6 in 1.0
+
+    try:
+        from PySide import QtWidgets
+    except ImportError:  # 0.20's shim keeps the widgets in QtGui
+        QtWidgets = QtGui
 
     def wait_until(condition, what, seconds=300):
         end = time.monotonic() + seconds

@@ -12,7 +12,7 @@ import unittest
 import FreeCAD
 import FreeCADGui
 import Part
-from PySide2 import QtGui, QtWidgets
+from qt_compat import QtGui, QtWidgets
 
 from MedialMesh import analysis
 

@@ -18,7 +18,7 @@ import FreeCADGui
 import ObjectsFem
 import Part
 from pivy import coin
-from PySide2 import QtCore, QtGui, QtWidgets
+from qt_compat import QtCore, QtGui, QtWidgets
 
 from MedialMesh import analysis, decomposition, objects
 from test_analyse_gui import PLACEMENT, colour_count

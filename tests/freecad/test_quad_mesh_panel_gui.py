@@ -22,7 +22,7 @@ import FreeCADGui
 import ObjectsFem
 import Part
 from pivy import coin
-from PySide2 import QtCore, QtGui, QtWidgets
+from qt_compat import QtCore, QtGui, QtWidgets
 
 from MedialMesh import meshing, messages, objects
 from test_quad_mesh_gui import panel_widget, press, process_events_until, report_view_text, wait_for_panel_to_close
