@@ -45,6 +45,7 @@ PREVIEW_EDGE_COLOUR = (0.1, 0.15, 0.45)
 # gigabytes; the panel refuses it with a message rather than hang.
 MAX_QUADS = 2_000_000
 PREVIEW_EDGES_UP_TO = 200_000  # elements; a preview of more draws their faces only
+PREVIEW_STEP = 250_000  # values copied into Coin between two turns of the GUI's event loop
 POLL_SECONDS = 0.1  # how often the panel reads the worker's progress
 NO_MERGING = 0.2  # the merge factor field's minimum, which stands for 0: no merging
 QUALITY_LINES = 8  # the quality summary: a heading, six lines, room to wrap
@@ -609,10 +610,19 @@ def preview_node(geometry, shapes=None):
             return done.value
 
 
+def fill_in_steps(field, values):
+    """Set a Coin multiple-value field to the array `values`, PREVIEW_STEP
+    values at a time, yielding after each piece: pivy copies an array into
+    Coin value by value (some 0.15 s for a million points)."""
+    for start in range(0, len(values), PREVIEW_STEP):
+        piece = values[start:start + PREVIEW_STEP]
+        field.setValues(start, len(piece), piece)
+        yield
+
+
 def preview_steps(geometry, shapes=None):
     """preview_node a step at a time: a generator that yields after each
-    large piece of the node (pivy copies an array into Coin value by value:
-    some 0.15 s for a million quads' points) and returns the node."""
+    piece of the node (fill_in_steps) and returns the node."""
     root = coin.SoSeparator()
     root.setName("MedialMeshPreview")
     unpickable = coin.SoPickStyle()
@@ -622,9 +632,8 @@ def preview_steps(geometry, shapes=None):
     light.model = coin.SoLightModel.BASE_COLOR
     root.addChild(light)
     coordinates = coin.SoCoordinate3()
-    coordinates.point.setValues(0, len(geometry["points"]), geometry["points"])
+    yield from fill_in_steps(coordinates.point, geometry["points"])
     root.addChild(coordinates)
-    yield
 
     faces = coin.SoSeparator()
     offset = coin.SoPolygonOffset()
@@ -635,22 +644,20 @@ def preview_steps(geometry, shapes=None):
         faces.addChild(base_colour(PREVIEW_FACE_COLOUR))
     else:
         colours = coin.SoBaseColor()
-        colours.rgb.setValues(0, len(shapes), viewproviders.shape_colours(shapes))
+        yield from fill_in_steps(colours.rgb, viewproviders.shape_colours(shapes))
         faces.addChild(colours)
-        yield
         binding = coin.SoMaterialBinding()
         binding.value = coin.SoMaterialBinding.PER_FACE
         faces.addChild(binding)
     face_set = coin.SoIndexedFaceSet()
-    face_set.coordIndex.setValues(0, len(geometry["polygons"]), geometry["polygons"])
+    yield from fill_in_steps(face_set.coordIndex, geometry["polygons"])
     faces.addChild(face_set)
     root.addChild(faces)
-    yield
 
     if len(geometry["edges"]):
         root.addChild(base_colour(PREVIEW_EDGE_COLOUR))
         line_set = coin.SoIndexedLineSet()
-        line_set.coordIndex.setValues(0, len(geometry["edges"]), geometry["edges"])
+        yield from fill_in_steps(line_set.coordIndex, geometry["edges"])
         root.addChild(line_set)
 
     splits = geometry["splits"]
