@@ -67,12 +67,7 @@ class MedialObject:
         try:
             self.compute(obj)
         except Exception as error:  # InputError, or anything unforeseen in a user's file
-            self.clear_output(obj)
-            clear_results(obj, report_failure(obj, error))
-            sketch = getattr(obj, "Sketch", None)
-            if sketch:  # no splits left over from an earlier face
-                sketch.deleteAllGeometry()
-                sketch.recompute()
+            store_failure(obj, report_failure(obj, error))
 
     def __getstate__(self):
         return None
@@ -184,6 +179,19 @@ def update_sketch(sketch, placement, splits):
     # The sketch does not depend on the object that owns it (a hidden link):
     # its shape must follow now, even when only that object is recomputed.
     sketch.recompute()
+
+
+def store_failure(obj, message):
+    """Empty a MedialMesh object (its output, its Results, its Sketch: no
+    figure or split left over from an earlier face) and put why into its
+    Status: what execute does when computing fails, and what the task panel
+    does with a failure it met off the GUI thread and has said already."""
+    obj.Proxy.clear_output(obj)
+    clear_results(obj, message)
+    sketch = getattr(obj, "Sketch", None)
+    if sketch:
+        sketch.deleteAllGeometry()
+        sketch.recompute()
 
 
 def clear_results(obj, status):
@@ -403,17 +411,6 @@ def store_mesh(obj, result, key=None):
     obj.Status = ok_status(obj, result.fallbacks)
     if obj.Sketch:
         update_sketch(obj.Sketch, result.placement, result.splits)
-
-
-def store_failure(obj, message):
-    """Empty the quad mesh object and put why into its Status: what execute
-    does when meshing fails, for a failure the task panel met off the GUI
-    thread and has said already (messages.failure_message)."""
-    obj.Proxy.clear_output(obj)
-    clear_results(obj, message)
-    if obj.Sketch:
-        obj.Sketch.deleteAllGeometry()
-        obj.Sketch.recompute()
 
 
 def ok_status(obj, fallbacks):
