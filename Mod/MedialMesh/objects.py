@@ -365,14 +365,19 @@ RECENT_MESHES = 2
 RECENT_MESH_MAX_QUADS = 300_000
 
 
+def parameter_values(obj):
+    """The quad mesh object's parameters as plain values (the size in mm),
+    as the task panel reads its fields."""
+    values = {name: getattr(obj, name) for name in MESH_PARAMETERS}
+    values["ElementSize"] = obj.ElementSize.Value
+    return values
+
+
 def mesh_key(obj, faces, values=None):
-    """What a mesh of obj is for: its parameter values (or `values`, a dict
-    of them) and its faces' geometry."""
-    values = values or {name: getattr(obj, name) for name in MESH_PARAMETERS}
-    size = values["ElementSize"]
-    size = size.Value if hasattr(size, "Value") else size
-    parameters = (size, values["MergeFactor"], values["ElementOrder"], values["Smoothing"])
-    return parameters, tuple(hash(face.exportBrepToString()) for face in faces)
+    """What a mesh of obj is for: its parameter values (or `values`, as
+    parameter_values gives them) and its faces' geometry."""
+    values = values or parameter_values(obj)
+    return tuple(values[name] for name in MESH_PARAMETERS), tuple(hash(f.exportBrepToString()) for f in faces)
 
 
 def recent_mesh(obj, key):

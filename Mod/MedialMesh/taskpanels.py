@@ -280,11 +280,6 @@ class QuadMeshTaskPanel:
             "Smoothing": self.smooth.isChecked(),
         }
 
-    def object_values(self):
-        obj = self.obj
-        return {"ElementSize": obj.ElementSize.Value, "MergeFactor": obj.MergeFactor,
-                "ElementOrder": obj.ElementOrder, "Smoothing": obj.Smoothing}
-
     def face_names(self):
         return ", ".join(self.names) or self.label
 
@@ -470,7 +465,7 @@ class QuadMeshTaskPanel:
     def accept(self):
         values = self.values()
         done = self.run is not None and not self.run.running() and self.run.values == values
-        unchanged = values == self.object_values() and self.obj.Status != objects.NOT_MESHED
+        unchanged = values == objects.parameter_values(self.obj) and self.obj.Status != objects.NOT_MESHED
         if not done and unchanged:  # the object's own mesh is for these values
             if self.run is not None and self.run.running():
                 self.run.stop()
@@ -500,9 +495,9 @@ class QuadMeshTaskPanel:
         if not self.created:
             doc.openTransaction("Edit quad mesh")
         values = self.values() if run is None else run.values
+        current = objects.parameter_values(obj)
         for name, value in values.items():
-            current = obj.ElementSize.Value if name == "ElementSize" else getattr(obj, name)
-            if value != current:
+            if value != current[name]:
                 recording.recorded(f"{recording.obj_ref(obj)}.{name} = {value!r}")
         QtGui.QApplication.setOverrideCursor(QtCore.Qt.WaitCursor)
         try:
